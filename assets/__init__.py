@@ -1,0 +1,11 @@
+"""Data files shipped with bullet_maze: maze layouts (TOML) and robot models (URDF)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+ASSET_DIR = Path(__file__).resolve().parent
+MAZE_DIR = ASSET_DIR / "mazes"
+ROBOT_DIR = ASSET_DIR / "robots"
+
+__all__ = ["ASSET_DIR", "MAZE_DIR", "ROBOT_DIR"]
