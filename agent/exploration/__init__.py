@@ -1,0 +1,39 @@
+"""Exploration strategies behind one interface (section III), composable and seeded."""
+
+from agent.exploration.adaptive import (
+    AdaptiveEpsilon,
+    action_probabilities,
+    adaptive_epsilon,
+    entropy,
+    normalized_entropy,
+)
+from agent.exploration.base import Exploration, greedy_action
+from agent.exploration.epsilon_greedy import EpsilonGreedy, Greedy
+from agent.exploration.factory import (
+    STRATEGY_NAMES,
+    exploration_from_spec,
+    exploration_spec,
+    make_exploration,
+)
+from agent.exploration.tabu import Tabu, tabu_capacity
+from agent.exploration.vdbe import VDBE, vdbe_epsilon
+
+__all__ = [
+    "STRATEGY_NAMES",
+    "VDBE",
+    "AdaptiveEpsilon",
+    "EpsilonGreedy",
+    "Exploration",
+    "Greedy",
+    "Tabu",
+    "action_probabilities",
+    "adaptive_epsilon",
+    "entropy",
+    "exploration_from_spec",
+    "exploration_spec",
+    "greedy_action",
+    "make_exploration",
+    "normalized_entropy",
+    "tabu_capacity",
+    "vdbe_epsilon",
+]

@@ -1,0 +1,92 @@
+"""The interface every exploration strategy implements, and the greedy choice they share.
+
+A strategy is told about the learner's events through hooks (all no-ops by default) and picks
+the action at each decision point (the start of an SMDP epoch, section IV.A). Strategies compose:
+:class:`~agent.exploration.tabu.Tabu` wraps any other strategy. Every random draw comes from the
+``numpy.random.Generator`` the agent passes in.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+
+def greedy_action(q_row: list[float], rng: np.random.Generator) -> int:
+    """Index of the largest value of ``q_row``; ties are broken uniformly with ``rng``.
+
+    A draw is made only when there is a tie, so the draws depend on the values alone.
+    """
+    best = max(q_row)
+    ties = [a for a, v in enumerate(q_row) if v == best]
+    if len(ties) == 1:
+        return ties[0]
+    return ties[int(rng.random() * len(ties))]
+
+
+class Exploration:
+    """Base class: an exploration strategy over leaves (states) and discrete actions.
+
+    Subclasses set :attr:`name` and override :meth:`epsilon` (epsilon-style strategies) or
+    :meth:`select`, plus the hooks they need. ``params()`` returns the constructor arguments and
+    ``state_dict()`` the learned state, both JSON-ready, for ``save``/``load``.
+    """
+
+    name: str = "exploration"
+    n_actions: int = 0
+
+    def bind(self, n_actions: int) -> None:
+        """Called once by the agent with the number of actions before any other hook."""
+        if n_actions < 1:
+            raise ValueError(f"{self.name}: n_actions must be >= 1, got {n_actions!r}")
+        self.n_actions = n_actions
+
+    def epsilon(self, leaf: int) -> float:
+        """The probability of a uniformly random action in ``leaf``."""
+        return 0.0
+
+    def select(self, leaf: int, q_row: list[float], rng: np.random.Generator) -> int:
+        """Epsilon-greedy choice with :meth:`epsilon` (section III): random with probability
+        epsilon, else the greedy action of ``q_row`` (one draw, plus one per random action or tie).
+        """
+        if rng.random() < self.epsilon(leaf):
+            return int(rng.random() * len(q_row))
+        return greedy_action(q_row, rng)
+
+    def update(self, leaf: int, action: int, delta_q: float) -> None:
+        """After eq. (10) changed Q-bar(leaf, action) by ``delta_q``."""
+
+    def on_epoch_end(self, leaf: int, action: int) -> None:
+        """An SMDP epoch that held ``action`` in ``leaf`` has ended (after :meth:`update`)."""
+
+    def on_episode_end(self, success: bool) -> None:
+        """An episode has ended; ``success`` says whether the goal was reached."""
+
+    def on_split(self, parent: int, children: tuple[int, int]) -> None:
+        """Leaf ``parent`` was split into ``children`` (new leaf ids)."""
+
+    def params(self) -> dict[str, Any]:
+        """Constructor arguments, JSON-ready (``make_exploration(name, **params)`` rebuilds it)."""
+        return {}
+
+    def state_dict(self) -> dict[str, Any]:
+        """Learned state, JSON-ready."""
+        return {}
+
+    def load_state_dict(self, state: dict[str, Any]) -> None:
+        """Restore :meth:`state_dict`."""
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self.params().items())
+        return f"{type(self).__name__}({args})"
+
+
+def leaf_table_to_json(table: dict[int, Any]) -> list[list[Any]]:
+    """A per-leaf dict as a JSON-ready list of ``[leaf, value]`` pairs (JSON keys are strings)."""
+    return [[leaf, value] for leaf, value in table.items()]
+
+
+def leaf_table_from_json(pairs: list[list[Any]]) -> dict[int, Any]:
+    """Inverse of :func:`leaf_table_to_json`."""
+    return {int(leaf): value for leaf, value in pairs}

@@ -1,0 +1,154 @@
+"""Decreasing tabu search (section III.A), wrapping any base strategy.
+
+A FIFO list of (leaf, action) pairs, appended when an epoch ends if not already listed; the
+oldest pair is released when the list is full. In the greedy choice a listed action's value is
+taken as -inf, so it is not chosen; the base strategy's random choice ignores the list (as the
+paper describes it). The capacity decreases with the number of successful episodes:
+``L_k = max(min_capacity, initial_capacity - floor(k / shrink_every))`` after k successes (the
+paper gives no numbers). When every action of a leaf is tabu the list is ignored for that choice
+(aspiration). When a leaf splits, its entries are dropped (``on_split="drop"``) or replaced in
+place by the same actions of both children (``on_split="inherit"``).
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from typing import Any, Literal
+
+import numpy as np
+
+from agent.exploration.base import Exploration
+
+SplitPolicy = Literal["drop", "inherit"]
+_NEG_INF = float("-inf")
+
+
+def tabu_capacity(
+    successes: int, initial_capacity: int, shrink_every: int, min_capacity: int
+) -> int:
+    """The list's capacity after ``successes`` goal arrivals: ``max(L_min, L_0 - floor(k / c))``."""
+    return max(min_capacity, initial_capacity - successes // shrink_every)
+
+
+class Tabu(Exploration):
+    """Decreasing tabu list of (leaf, action) pairs in front of a base strategy (section III.A)."""
+
+    def __init__(
+        self,
+        base: Exploration,
+        initial_capacity: int = 20,
+        shrink_every: int = 1,
+        min_capacity: int = 0,
+        on_split: SplitPolicy = "drop",
+    ) -> None:
+        if not isinstance(base, Exploration):
+            raise TypeError(f"tabu: base must be an Exploration, got {base!r}")
+        for label, value, least in (
+            ("initial_capacity", initial_capacity, 0),
+            ("shrink_every", shrink_every, 1),
+            ("min_capacity", min_capacity, 0),
+        ):
+            if not isinstance(value, int) or value < least:
+                raise ValueError(f"tabu: {label} must be an int >= {least}, got {value!r}")
+        if on_split not in ("drop", "inherit"):
+            raise ValueError(f"tabu: on_split must be 'drop' or 'inherit', got {on_split!r}")
+        self.base = base
+        self.initial_capacity = initial_capacity
+        self.shrink_every = shrink_every
+        self.min_capacity = min_capacity
+        self.on_split_policy: SplitPolicy = on_split
+        self.successes = 0
+        self._fifo: deque[tuple[int, int]] = deque()
+        self._listed: set[tuple[int, int]] = set()
+
+    @property
+    def name(self) -> str:  # type: ignore[override]
+        return f"{self.base.name}+tabu"
+
+    @property
+    def capacity(self) -> int:
+        """Current capacity L_k."""
+        return tabu_capacity(
+            self.successes, self.initial_capacity, self.shrink_every, self.min_capacity
+        )
+
+    @property
+    def entries(self) -> list[tuple[int, int]]:
+        """The listed (leaf, action) pairs, oldest first."""
+        return list(self._fifo)
+
+    def bind(self, n_actions: int) -> None:
+        super().bind(n_actions)
+        self.base.bind(n_actions)
+
+    def epsilon(self, leaf: int) -> float:
+        return self.base.epsilon(leaf)
+
+    def select(self, leaf: int, q_row: list[float], rng: np.random.Generator) -> int:
+        listed = self._listed
+        if listed:
+            masked = [_NEG_INF if (leaf, a) in listed else v for a, v in enumerate(q_row)]
+            if max(masked) > _NEG_INF:  # else aspiration: every action is tabu
+                q_row = masked
+        return self.base.select(leaf, q_row, rng)
+
+    def update(self, leaf: int, action: int, delta_q: float) -> None:
+        self.base.update(leaf, action, delta_q)
+
+    def on_epoch_end(self, leaf: int, action: int) -> None:
+        self.base.on_epoch_end(leaf, action)
+        pair = (leaf, action)
+        if pair not in self._listed:
+            self._fifo.append(pair)
+            self._listed.add(pair)
+            self._trim()
+
+    def on_episode_end(self, success: bool) -> None:
+        self.base.on_episode_end(success)
+        if success:
+            self.successes += 1
+            self._trim()
+
+    def on_split(self, parent: int, children: tuple[int, int]) -> None:
+        self.base.on_split(parent, children)
+        if not any(leaf == parent for leaf, _ in self._fifo):
+            return
+        kept: list[tuple[int, int]] = []
+        for leaf, action in self._fifo:
+            if leaf != parent:
+                kept.append((leaf, action))
+            elif self.on_split_policy == "inherit":
+                kept.extend((child, action) for child in children)
+        self._fifo = deque(kept)
+        self._listed = set(kept)
+        self._trim()
+
+    def _trim(self) -> None:
+        capacity = self.capacity
+        while len(self._fifo) > capacity:
+            self._listed.discard(self._fifo.popleft())
+
+    def params(self) -> dict[str, Any]:
+        return {
+            "initial_capacity": self.initial_capacity,
+            "shrink_every": self.shrink_every,
+            "min_capacity": self.min_capacity,
+            "on_split": self.on_split_policy,
+        }
+
+    def state_dict(self) -> dict[str, Any]:
+        return {
+            "successes": self.successes,
+            "fifo": [list(p) for p in self._fifo],
+            "base": self.base.state_dict(),
+        }
+
+    def load_state_dict(self, state: dict[str, Any]) -> None:
+        self.successes = int(state["successes"])
+        self._fifo = deque((int(leaf), int(action)) for leaf, action in state["fifo"])
+        self._listed = set(self._fifo)
+        self.base.load_state_dict(state["base"])
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self.params().items())
+        return f"Tabu({self.base!r}, {args})"

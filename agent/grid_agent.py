@@ -1,0 +1,40 @@
+"""Baseline: the same SMDP learner over a fixed uniform grid (the paper's section I foil)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from gymnasium import spaces
+
+from agent.config import TreeConfig
+from agent.exploration import Exploration
+from agent.learner import Bounds, SMDPAgent
+from agent.uniform_grid import UniformGrid
+
+
+class GridAgent(SMDPAgent):
+    """Q-learning on ``resolution`` equal cells per dimension, with the tree agent's epochs and
+    strategies, so that coarse, fine and adaptive partitions compare on equal terms.
+
+    An epoch holds its action while the input stays in one cell (eqs. 9-10 over cells). The
+    split fields of ``config`` are unused.
+    """
+
+    kind = "grid"
+    partition: UniformGrid
+
+    def __init__(
+        self,
+        observation_space: spaces.Space,
+        action_space: spaces.Space,
+        exploration: str | Exploration = "adaptive+tabu",
+        seed: int = 0,
+        config: TreeConfig | None = None,
+        bounds: Bounds | None = None,
+        resolution: int | Sequence[int] = 20,
+    ) -> None:
+        self.resolution = resolution
+        super().__init__(observation_space, action_space, exploration, seed, config, bounds)
+
+    def _make_partition(self, low: list[float], high: list[float]) -> UniformGrid:
+        return UniformGrid(low, high, self.resolution)

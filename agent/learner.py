@@ -1,0 +1,280 @@
+"""SMDP Q-learning over the leaves of a partition (section IV.A-B, eqs. 6-10).
+
+:class:`SMDPAgent` is the one learner; :class:`~agent.tree_agent.TreeAgent` and
+:class:`~agent.grid_agent.GridAgent` only choose its partition. Q-bar and the visit counts are
+lists of Python lists indexed by leaf id, because the per-step path (one leaf lookup, two list
+appends, a comparison) must stay near a microsecond; the work of eqs. (9)-(10) and the split
+test run once per epoch.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable, Sequence
+from os import PathLike
+from typing import Any, Self
+
+import numpy as np
+from gymnasium import spaces
+
+from agent.config import TreeConfig
+from agent.episode_stats import EpisodeStats
+from agent.exploration import Exploration, make_exploration
+from agent.inspection import LeafInfo, render_partition
+from agent.partition import Partition
+from agent.smdp import epoch_returns, leaf_update
+from agent.spaces import action_count, observation_bounds
+
+logger = logging.getLogger(__name__)
+
+Bounds = tuple[Sequence[float], Sequence[float]]
+Callback = Callable[[EpisodeStats], bool | None]
+
+
+class SMDPAgent:
+    """Q-learning on SMDP epochs over a partition's leaves, with a pluggable exploration strategy.
+
+    An epoch starts at a decision point (an action is chosen for the current leaf) and holds the
+    action until the input leaves the leaf, the episode ends, the env reports a collision
+    (``config.end_epoch_on_collision``) or ``config.max_epoch_steps`` steps have passed. Then
+    eq. (9) gives each input of the epoch its return, eq. (10) updates Q-bar(leaf, action), the
+    strategy is told, and the partition receives the state-error pairs (and may split).
+    """
+
+    kind = "smdp"
+
+    def __init__(
+        self,
+        observation_space: spaces.Space,
+        action_space: spaces.Space,
+        exploration: str | Exploration = "adaptive+tabu",
+        seed: int = 0,
+        config: TreeConfig | None = None,
+        bounds: Bounds | None = None,
+    ) -> None:
+        low, high = observation_bounds(observation_space, bounds)
+        self.n_actions = action_count(action_space)
+        self.observation_space = observation_space
+        self.action_space = action_space
+        self.bounds = (low, high)
+        self.config = config if config is not None else TreeConfig()
+        if not isinstance(self.config, TreeConfig):
+            raise TypeError(f"config must be a TreeConfig, got {type(self.config).__name__}")
+        if isinstance(exploration, str):
+            exploration = make_exploration(exploration)
+        elif not isinstance(exploration, Exploration):
+            raise TypeError(
+                f"exploration must be a strategy name or an Exploration, got {exploration!r}"
+            )
+        exploration.bind(self.n_actions)
+        self.exploration = exploration
+        if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
+            raise TypeError(f"seed must be an int, got {seed!r}")
+        self.seed = int(seed)
+        self.rng = np.random.default_rng(self.seed)
+        self.partition: Partition = self._make_partition(low, high)
+        q0 = self.config.q_init
+        self.q: list[list[float]] = [[q0] * self.n_actions for _ in range(self.partition.n_ids)]
+        self.visits: list[list[int]] = [[0] * self.n_actions for _ in range(self.partition.n_ids)]
+        self.episodes_done = 0
+
+    def _make_partition(self, low: list[float], high: list[float]) -> Partition:
+        raise NotImplementedError
+
+    def learn(
+        self,
+        env: Any,
+        episodes: int,
+        callback: Callback | None = None,
+        reset_seed: int | None = None,
+    ) -> list[EpisodeStats]:
+        """Train for ``episodes`` episodes; the first resets with ``reset_seed``, the rest unseeded.
+
+        ``callback(stats)`` runs after each episode; returning ``False`` stops learning.
+        """
+        if not isinstance(episodes, int) or episodes < 0:
+            raise ValueError(f"episodes must be an int >= 0, got {episodes!r}")
+        env_actions = getattr(env.action_space, "n", None)
+        if env_actions is None or int(env_actions) != self.n_actions:
+            raise ValueError(
+                f"env.action_space {env.action_space!r} does not match the agent's "
+                f"{self.n_actions} actions"
+            )
+        history: list[EpisodeStats] = []
+        for i in range(episodes):
+            obs, _ = env.reset(seed=reset_seed if i == 0 else None)
+            stats = self._run_episode(env, obs)
+            history.append(stats)
+            logger.debug("%s", stats)
+            if callback is not None and callback(stats) is False:
+                break
+        return history
+
+    def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:
+        cfg = self.config
+        q = self.q
+        leaf_of = self.partition.leaf_of
+        strategy = self.exploration
+        rng = self.rng
+        cap = cfg.max_epoch_steps if cfg.max_epoch_steps is not None else 1 << 62
+        key = cfg.collision_key
+        end_on_collision = cfg.end_epoch_on_collision
+        ndarray = np.ndarray
+
+        x = obs.tolist() if type(obs) is ndarray else [float(v) for v in obs]
+        leaf = leaf_of(x)
+        action = strategy.select(leaf, q[leaf], rng)
+        eps_sum = strategy.epsilon(leaf)
+        xs: list[list[float]] = []
+        rs: list[float] = []
+        steps = collisions = 0
+        epochs = 1
+        total = 0.0
+        terminated = truncated = False
+        info: dict[str, Any] = {}
+        while True:
+            obs, reward, terminated, truncated, info = env.step(action)
+            r = float(reward)
+            xs.append(x)
+            rs.append(r)
+            steps += 1
+            total += r
+            x = obs.tolist() if type(obs) is ndarray else [float(v) for v in obs]
+            collided = bool(info.get(key, False))
+            if collided:
+                collisions += 1
+            nxt = leaf_of(x)
+            done = terminated or truncated
+            if done or nxt != leaf or len(rs) >= cap or (collided and end_on_collision):
+                bootstrap = 0.0 if terminated else max(q[nxt])
+                split = self._end_epoch(leaf, action, xs, rs, bootstrap)
+                if done:
+                    break
+                leaf = leaf_of(x) if split else nxt
+                q = self.q
+                action = strategy.select(leaf, q[leaf], rng)
+                eps_sum += strategy.epsilon(leaf)
+                epochs += 1
+                xs = []
+                rs = []
+        success = bool(info["is_success"]) if "is_success" in info else bool(terminated)
+        strategy.on_episode_end(success)
+        stats = EpisodeStats(
+            episode=self.episodes_done,
+            steps=steps,
+            episode_return=total,
+            success=success,
+            truncated=bool(truncated) and not terminated,
+            leaves=self.partition.n_leaves,
+            collisions=collisions,
+            epochs=epochs,
+            mean_epsilon=eps_sum / epochs,
+        )
+        self.episodes_done += 1
+        return stats
+
+    def _end_epoch(
+        self, leaf: int, action: int, xs: list[list[float]], rs: list[float], bootstrap: float
+    ) -> bool:
+        """Eqs. (9)-(10) for one epoch, then the strategy's hooks and the partition's split test.
+
+        Returns whether ``leaf`` was split.
+        """
+        cfg = self.config
+        row = self.q[leaf]
+        old = row[action]
+        returns = epoch_returns(rs, bootstrap, cfg.gamma)
+        new, errors = leaf_update(old, returns, cfg.alpha)
+        row[action] = new
+        self.visits[leaf][action] += 1
+        strategy = self.exploration
+        strategy.update(leaf, action, new - old)
+        strategy.on_epoch_end(leaf, action)
+        if not self.partition.records_errors:
+            return False
+        children = self.partition.record(leaf, xs, errors)
+        if children is None:
+            return False
+        self._grow(leaf, children)
+        return True
+
+    def _grow(self, parent: int, children: tuple[int, int]) -> None:
+        """Give the new leaves rows of Q-bar and counts (section IV.B, children of a split)."""
+        cfg = self.config
+        while len(self.q) < self.partition.n_ids:
+            self.q.append([cfg.q_init] * self.n_actions)
+            self.visits.append([0] * self.n_actions)
+        for child in children:
+            if cfg.inherit_q:
+                self.q[child] = list(self.q[parent])
+            if not cfg.reset_counts_on_split:
+                self.visits[child] = list(self.visits[parent])
+        self.exploration.on_split(parent, children)
+
+    def predict(self, obs: Any, deterministic: bool = True) -> int:
+        """The greedy action for ``obs`` (lowest index among ties); with ``deterministic=False``
+        the exploration strategy chooses (drawing from the agent's generator).
+        """
+        x = np.asarray(obs, dtype=np.float64).reshape(-1).tolist()
+        leaf = self.partition.leaf_of(x)
+        row = self.q[leaf]
+        if deterministic:
+            return max(range(self.n_actions), key=row.__getitem__)
+        return self.exploration.select(leaf, row, self.rng)
+
+    def leaf_of(self, obs: Any) -> int:
+        """Id of the leaf that holds ``obs``."""
+        return self.partition.leaf_of(np.asarray(obs, dtype=np.float64).reshape(-1).tolist())
+
+    @property
+    def n_leaves(self) -> int:
+        """Number of leaves of the partition."""
+        return self.partition.n_leaves
+
+    @property
+    def depth(self) -> int:
+        """Largest leaf depth (0 for a single root or a grid)."""
+        return max(self.partition.leaf_depth(leaf) for leaf in self.partition.leaves())
+
+    def leaf_info(self, leaf: int) -> LeafInfo:
+        """Bounds, depth, Q-bar values and visit counts of one leaf."""
+        low, high = self.partition.leaf_bounds(leaf)
+        return LeafInfo(
+            leaf=leaf,
+            depth=self.partition.leaf_depth(leaf),
+            low=tuple(low),
+            high=tuple(high),
+            q_values=tuple(self.q[leaf]),
+            visits=tuple(self.visits[leaf]),
+            epsilon=self.exploration.epsilon(leaf),
+        )
+
+    def leaves(self) -> list[LeafInfo]:
+        """:meth:`leaf_info` of every leaf, by id."""
+        return [self.leaf_info(leaf) for leaf in self.partition.leaves()]
+
+    def render(self) -> str:
+        """Text rendering of the partition with each leaf's box, Q-bar and counts."""
+        return render_partition(self)
+
+    def save(self, path: str | PathLike[str]) -> None:
+        """Write the agent to ``path`` (``.npz`` of arrays + JSON metadata; never pickle)."""
+        from agent.serialization import save_agent
+
+        save_agent(self, path)
+
+    @classmethod
+    def load(cls, path: str | PathLike[str]) -> Self:
+        """Read an agent written by :meth:`save`; it acts and continues learning identically."""
+        from agent.serialization import load_agent
+
+        agent = load_agent(path)
+        if not isinstance(agent, cls):
+            raise ValueError(f"{path} holds a {type(agent).__name__}, not a {cls.__name__}")
+        return agent
+
+    def __repr__(self) -> str:
+        return (
+            f"{type(self).__name__}(leaves={self.n_leaves}, actions={self.n_actions}, "
+            f"exploration={self.exploration!r}, seed={self.seed})"
+        )

@@ -1,0 +1,231 @@
+"""The paper's adaptive decision tree over the observation box (section IV.B).
+
+A binary tree stored in flat Python lists indexed by node id (the per-step leaf lookup walks
+plain lists, which is several times faster than NumPy for one vector). A node is a leaf while
+``dim[node] == -1``; an internal node sends ``x[dim] < threshold`` to its left child
+``left[node]`` and the rest to ``left[node] + 1``. Node ids are never reused, so leaf ids
+are stable until the leaf splits. Each leaf holds a bounded :class:`ErrorBuffer` of
+state-error pairs; when the three conditions hold the leaf splits along the dimension of eq. (12)
+at the point of eq. (13).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from agent.config import TreeConfig
+from agent.error_buffer import ErrorBuffer
+from agent.split_statistics import choose_split, should_split
+
+
+class PartitionTree:
+    """Adaptive binary partition of ``[low, high]`` (section IV.B)."""
+
+    kind = "tree"
+    records_errors = True
+
+    def __init__(self, low: list[float], high: list[float], config: TreeConfig) -> None:
+        self.config = config
+        self.dims = len(low)
+        self.root_low = [float(v) for v in low]
+        self.root_high = [float(v) for v in high]
+        self._root_width = np.asarray(self.root_high) - np.asarray(self.root_low)
+        self._dim: list[int] = [-1]
+        self._threshold: list[float] = [0.0]
+        self._left: list[int] = [-1]
+        self._parent: list[int] = [-1]
+        self._low: list[list[float]] = [list(self.root_low)]
+        self._high: list[list[float]] = [list(self.root_high)]
+        self._depth: list[int] = [0]
+        self._buffers: dict[int, ErrorBuffer] = {}
+        self.n_leaves = 1
+
+    @property
+    def n_ids(self) -> int:
+        return len(self._dim)
+
+    @property
+    def depth(self) -> int:
+        """Largest leaf depth (0 for the root alone)."""
+        return max(self._depth[leaf] for leaf in self.leaves())
+
+    def leaf_of(self, x: list[float]) -> int:
+        dims, thresholds, left = self._dim, self._threshold, self._left
+        node = 0
+        d = dims[0]
+        while d >= 0:
+            node = left[node] if x[d] < thresholds[node] else left[node] + 1
+            d = dims[node]
+        return node
+
+    def leaves(self) -> list[int]:
+        return [node for node, d in enumerate(self._dim) if d < 0]
+
+    def leaf_bounds(self, leaf: int) -> tuple[list[float], list[float]]:
+        return list(self._low[leaf]), list(self._high[leaf])
+
+    def leaf_depth(self, leaf: int) -> int:
+        return self._depth[leaf]
+
+    def buffer(self, leaf: int) -> ErrorBuffer | None:
+        """The leaf's state-error pairs (None until it has any)."""
+        return self._buffers.get(leaf)
+
+    def record(
+        self, leaf: int, xs: list[list[float]], errors: list[float]
+    ) -> tuple[int, int] | None:
+        """Store the pairs, then run the split test of section IV.B once N_th pairs are held.
+
+        In ``error_buffer="clear"`` mode the pairs are dropped after each test that does not
+        split; in ``"window"`` mode the buffer is a FIFO of the last N_th pairs, tested each epoch.
+        """
+        cfg = self.config
+        buf = self._buffers.get(leaf)
+        if buf is None:
+            buf = self._buffers[leaf] = ErrorBuffer(self.dims, cfg.split_min_samples)
+        buf.add(xs, errors)
+        if buf.count < cfg.split_min_samples:
+            return None
+        mean, variance = buf.mean_variance()
+        children = None
+        if should_split(
+            buf.count,
+            mean,
+            variance,
+            min_samples=cfg.split_min_samples,
+            max_abs_mean=cfg.split_max_abs_mean,
+            min_variance=cfg.split_min_variance,
+        ):
+            children = self._try_split(leaf, buf)
+        if children is None and cfg.error_buffer == "clear":
+            buf.clear()
+        return children
+
+    def _try_split(self, leaf: int, buf: ErrorBuffer) -> tuple[int, int] | None:
+        if self.n_leaves >= self.config.max_leaves:
+            return None
+        low, high = np.asarray(self._low[leaf]), np.asarray(self._high[leaf])
+        min_width = self._root_width * self.config.min_leaf_fraction
+        if not ((high - low) >= 2.0 * min_width).any():
+            return None  # checked before copying the buffer: in "window" mode this runs each epoch
+        inputs, errors = buf.arrays()
+        ranges = high - low
+        if self.config.range_normalization == "root":
+            ranges = ranges / self._root_width
+        choice = choose_split(inputs, errors, low, high, ranges, min_width)
+        if choice is None:
+            return None
+        dim, value = choice
+        children = self.split(leaf, dim, value)
+        if self.config.children_inherit_samples:
+            goes_left = inputs[:, dim] < value
+            for child, mask in zip(children, (goes_left, ~goes_left), strict=True):
+                if mask.any():
+                    child_buf = ErrorBuffer(self.dims, self.config.split_min_samples)
+                    child_buf.add(inputs[mask].tolist(), errors[mask].tolist())
+                    self._buffers[child] = child_buf
+        return children
+
+    def split(self, leaf: int, dim: int, value: float) -> tuple[int, int]:
+        """Split ``leaf`` at ``x[dim] = value`` into two new leaves; returns their ids."""
+        if self._dim[leaf] >= 0:
+            raise ValueError(f"node {leaf} is not a leaf")
+        if not 0 <= dim < self.dims:
+            raise ValueError(f"split dimension {dim} outside 0..{self.dims - 1}")
+        low, high = self._low[leaf], self._high[leaf]
+        if not low[dim] < value < high[dim]:
+            raise ValueError(
+                f"split value {value} outside leaf {leaf}'s range ({low[dim]}, {high[dim]}) "
+                f"in dimension {dim}"
+            )
+        first = len(self._dim)
+        self._dim[leaf] = dim
+        self._threshold[leaf] = float(value)
+        self._left[leaf] = first
+        left_high = list(high)
+        left_high[dim] = float(value)
+        right_low = list(low)
+        right_low[dim] = float(value)
+        for child_low, child_high in ((list(low), left_high), (right_low, list(high))):
+            self._dim.append(-1)
+            self._threshold.append(0.0)
+            self._left.append(-1)
+            self._parent.append(leaf)
+            self._low.append(child_low)
+            self._high.append(child_high)
+            self._depth.append(self._depth[leaf] + 1)
+        self._buffers.pop(leaf, None)
+        self.n_leaves += 1
+        return first, first + 1
+
+    def render_lines(self, describe_leaf: Callable[[int], str]) -> list[str]:
+        lines: list[str] = []
+        stack: list[tuple[int, str]] = [(0, "")]
+        while stack:
+            node, label = stack.pop()
+            indent = "  " * self._depth[node]
+            d = self._dim[node]
+            if d < 0:
+                lines.append(f"{indent}{label}{describe_leaf(node)}")
+                continue
+            t = self._threshold[node]
+            lines.append(f"{indent}{label}node {node}: split x[{d}] at {t:.6g}")
+            left = self._left[node]
+            stack.append((left + 1, f"x[{d}] >= {t:.6g}: "))
+            stack.append((left, f"x[{d}] < {t:.6g}: "))
+        return lines
+
+    def to_arrays(self) -> tuple[dict[str, Any], dict[str, Any]]:
+        arrays: dict[str, Any] = {
+            "dim": np.asarray(self._dim, dtype=np.int64),
+            "threshold": np.asarray(self._threshold, dtype=np.float64),
+            "left": np.asarray(self._left, dtype=np.int64),
+            "parent": np.asarray(self._parent, dtype=np.int64),
+            "low": np.asarray(self._low, dtype=np.float64),
+            "high": np.asarray(self._high, dtype=np.float64),
+            "depth": np.asarray(self._depth, dtype=np.int64),
+        }
+        leaves = sorted(self._buffers)
+        capacity = self.config.split_min_samples
+        states = [self._buffers[leaf].state() for leaf in leaves]
+        arrays["buffer_leaf"] = np.asarray(leaves, dtype=np.int64)
+        arrays["buffer_inputs"] = np.asarray([s[0] for s in states], dtype=np.float64).reshape(
+            len(leaves), capacity * self.dims
+        )
+        arrays["buffer_errors"] = np.asarray([s[1] for s in states], dtype=np.float64).reshape(
+            len(leaves), capacity
+        )
+        arrays["buffer_counters"] = np.asarray([s[2] for s in states], dtype=np.float64).reshape(
+            len(leaves), 4
+        )
+        return arrays, {"root_low": self.root_low, "root_high": self.root_high}
+
+    @classmethod
+    def from_arrays(
+        cls, arrays: dict[str, NDArray[Any]], meta: dict[str, Any], config: TreeConfig
+    ) -> PartitionTree:
+        """Inverse of :meth:`to_arrays`."""
+        tree = cls(meta["root_low"], meta["root_high"], config)
+        tree._dim = [int(v) for v in arrays["dim"]]
+        tree._threshold = [float(v) for v in arrays["threshold"]]
+        tree._left = [int(v) for v in arrays["left"]]
+        tree._parent = [int(v) for v in arrays["parent"]]
+        tree._low = arrays["low"].tolist()
+        tree._high = arrays["high"].tolist()
+        tree._depth = [int(v) for v in arrays["depth"]]
+        tree.n_leaves = sum(1 for d in tree._dim if d < 0)
+        counters = arrays["buffer_counters"]
+        for row, leaf in enumerate(arrays["buffer_leaf"].tolist()):
+            c = counters[row]
+            tree._buffers[leaf] = ErrorBuffer.restore(
+                tree.dims,
+                config.split_min_samples,
+                arrays["buffer_inputs"][row],
+                arrays["buffer_errors"][row],
+                [int(c[0]), int(c[1]), float(c[2]), float(c[3])],
+            )
+        return tree

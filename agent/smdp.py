@@ -1,0 +1,36 @@
+"""SMDP epoch returns and the leaf update (section IV.A-B, eqs. 6-10).
+
+An epoch is one action held while the input stays in one leaf. These functions are called once
+per epoch with the epoch's rewards; they are plain Python because epochs are short and NumPy's
+per-call cost would dominate.
+"""
+
+from __future__ import annotations
+
+
+def epoch_returns(rewards: list[float], bootstrap: float, gamma: float) -> list[float]:
+    """Eq. (9): the discounted return of each input of an epoch.
+
+    ``Q(s_{t+k}, a) = r_{t+k} + gamma r_{t+k+1} + ... + gamma^{tau-k-1} r_{t+tau-1}
+    + gamma^{tau-k} V-bar(s')`` for ``k = 0 .. tau-1``, where ``bootstrap`` is V-bar(s'),
+    max_a Q-bar(s', a) of the leaf the epoch ended in, or 0 at a terminal state.
+    """
+    out = [0.0] * len(rewards)
+    g = bootstrap
+    for k in range(len(rewards) - 1, -1, -1):
+        g = rewards[k] + gamma * g
+        out[k] = g
+    return out
+
+
+def leaf_update(q: float, returns: list[float], alpha: float) -> tuple[float, list[float]]:
+    """Eq. (10): move Q-bar(s_t, a) towards the mean of the epoch's per-input returns.
+
+    ``Q-bar <- (1 - alpha) Q-bar + alpha (1/tau) sum_k Q(s_{t+k}, a)``. Returns the new Q-bar and
+    the estimation errors ``delta_k = Q(s_{t+k}, a) - Q-bar_t(s_t, a)`` measured against the value
+    before the update (the state-error pairs of section IV.B). The change the update made,
+    ``new - q``, is alpha times the mean error: the Delta-Q of eq. (5).
+    """
+    errors = [g - q for g in returns]
+    new_q = (1.0 - alpha) * q + alpha * (sum(returns) / len(returns))
+    return new_q, errors

@@ -1,0 +1,42 @@
+"""The paper's learner: SMDP Q-learning over an adaptive decision tree (section IV)."""
+
+from __future__ import annotations
+
+from gymnasium import spaces
+
+from agent.config import TreeConfig
+from agent.exploration import Exploration
+from agent.learner import Bounds, SMDPAgent
+from agent.partition_tree import PartitionTree
+
+
+class TreeAgent(SMDPAgent):
+    """Adaptive decision-tree agent of Hwang, Li and Jiang (section IV).
+
+    Example::
+
+        agent = TreeAgent(env.observation_space, env.action_space, "adaptive+tabu", seed=0)
+        history = agent.learn(env, episodes=100, reset_seed=0)
+        action = agent.predict(obs)
+    """
+
+    kind = "tree"
+    partition: PartitionTree
+
+    def __init__(
+        self,
+        observation_space: spaces.Space,
+        action_space: spaces.Space,
+        exploration: str | Exploration = "adaptive+tabu",
+        seed: int = 0,
+        config: TreeConfig | None = None,
+        bounds: Bounds | None = None,
+    ) -> None:
+        super().__init__(observation_space, action_space, exploration, seed, config, bounds)
+
+    def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
+        return PartitionTree(low, high, self.config)
+
+    @property
+    def depth(self) -> int:
+        return self.partition.depth

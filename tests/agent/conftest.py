@@ -1,0 +1,63 @@
+"""A plain continuous test task for the agent: a 2-D box with a goal disc (no simulator)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium import spaces
+
+
+class Corridor(gym.Env[np.ndarray, int]):
+    """A point in ``[0, 1]^2`` moved by up/down/left/right steps of ``step`` plus Gaussian noise.
+
+    Rewards as in the paper's maze: +5 at the goal disc (terminates), -1 and no move when a step
+    would leave the box (``info["collision"]``), -0.01 otherwise; truncated after ``max_steps``.
+    """
+
+    moves = ((0.0, 1.0), (0.0, -1.0), (-1.0, 0.0), (1.0, 0.0))
+
+    def __init__(
+        self,
+        step: float = 0.1,
+        noise: float = 0.01,
+        start: tuple[float, float] = (0.15, 0.15),
+        goal: tuple[float, float] = (0.85, 0.85),
+        goal_radius: float = 0.12,
+        max_steps: int = 200,
+    ) -> None:
+        self.observation_space = spaces.Box(0.0, 1.0, shape=(2,), dtype=np.float64)
+        self.action_space = spaces.Discrete(4)
+        self.step_size, self.noise = step, noise
+        self.start, self.goal, self.goal_radius = np.asarray(start), np.asarray(goal), goal_radius
+        self.max_steps = max_steps
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        super().reset(seed=seed)
+        self.pos = self.start.copy()
+        self.t = 0
+        return self.pos.copy(), {}
+
+    def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        self.t += 1
+        move = np.asarray(self.moves[action]) * self.step_size
+        new = self.pos + move + self.np_random.normal(0.0, self.noise, size=2)
+        collision = bool((new < 0.0).any() or (new > 1.0).any())
+        if not collision:
+            self.pos = new
+        at_goal = bool(np.linalg.norm(self.pos - self.goal) < self.goal_radius)
+        reward = 5.0 if at_goal else (-1.0 if collision else -0.01)
+        truncated = self.t >= self.max_steps and not at_goal
+        info = {"collision": collision, "is_success": at_goal}
+        return self.pos.copy(), reward, at_goal, truncated, info
+
+
+@pytest.fixture
+def make_corridor() -> Callable[..., Corridor]:
+    """Factory of :class:`Corridor` envs (keyword arguments as its constructor)."""
+    return Corridor
