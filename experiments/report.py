@@ -1,0 +1,200 @@
+"""The report of an experiment: ``report.md``, ``summary.csv`` and the figures, in its folder.
+
+Metrics (defined in ``docs/experiments.md``): episodes to convergence, final steps (last
+``final_window`` episodes) and their ratio to the optimum, area under the curve, success rate
+(capped episodes count as failures at the cap), leaves, interquartile mean, probability of
+improvement over the baseline, wall time and steps per second.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from experiments import plots, store
+from experiments.config import ExperimentConfig
+from experiments.runner import load_results
+from experiments.statistics import (
+    StrategySummary,
+    bootstrap_ci,
+    interquartile_mean,
+    summarize,
+)
+
+REPORT_FILE = "report.md"
+SUMMARY_FILE = "summary.csv"
+FIGURE4_FILE = "figure4.png"
+LEAVES_FILE = "leaves.png"
+
+
+@dataclass(frozen=True)
+class Report:
+    """What :func:`write_report` produced."""
+
+    markdown: Path
+    summary_csv: Path
+    figures: tuple[Path, ...]
+    summaries: tuple[StrategySummary, ...]
+    optimal_steps: float
+
+
+def write_report(config: ExperimentConfig, out_dir: Path, seed: int = 0) -> Report:
+    """Compute the statistics of every finished run in ``out_dir`` and write the report."""
+    results = {name: runs for name, runs in load_results(config, out_dir).items() if runs}
+    if not results:
+        raise ValueError(f"{out_dir}: no finished runs to report")
+    optimal = _optimal_steps(results)
+    window, final_window = config.smoothing_window, config.final_window
+    baseline_runs = results.get(config.baseline_name)
+    baseline_final = (None if baseline_runs is None else
+                      _stack(baseline_runs, "steps")[:, -final_window:].mean(axis=1))
+    summaries = tuple(
+        summarize(
+            name, _stack(runs, "steps"), _stack(runs, "success"), _stack(runs, "leaves"),
+            baseline_final, window=window, final_window=final_window,
+            wall_time_s=np.array([r.meta.get("wall_time_s", np.nan) for r in runs]),
+            steps_per_second=np.array([r.meta.get("steps_per_second", np.nan) for r in runs]),
+        )
+        for name, runs in results.items()
+    )
+    bands = plots.smoothed_bands({n: _stack(r, "steps") for n, r in results.items()}, window,
+                                 seed=seed)
+    runs_count = {name: len(runs) for name, runs in results.items()}
+    figures = (
+        plots.figure4(bands, optimal, out_dir / FIGURE4_FILE, window, runs_count,
+                      cap=config.env.max_episode_steps,
+                      title=f"{config.name}: average steps to goal "
+                            f"({window}-episode moving average, 95% bootstrap band)"),
+        plots.leaves_figure({n: _stack(r, "leaves") for n, r in results.items()},
+                            out_dir / LEAVES_FILE),
+    )
+    summary_csv = out_dir / SUMMARY_FILE
+    store.atomic_write_text(summary_csv, _summary_csv(summaries, optimal))
+    markdown = out_dir / REPORT_FILE
+    store.atomic_write_text(markdown, render_markdown(config, summaries, optimal, seed))
+    return Report(markdown, summary_csv, figures, summaries, optimal)
+
+
+def _stack(runs: list[store.RunData], column: str) -> np.ndarray:
+    """Runs x episodes array of one column (runs are cut to the shortest)."""
+    length = min(len(r.columns[column]) for r in runs)
+    return np.stack([r.columns[column][:length] for r in runs]).astype(float)
+
+
+def _optimal_steps(results: dict[str, list[store.RunData]]) -> float:
+    for runs in results.values():
+        for run in runs:
+            value = run.meta.get("optimal_steps")
+            if value is not None and math.isfinite(value):
+                return float(value)
+    return float("nan")
+
+
+def _summary_csv(summaries: tuple[StrategySummary, ...], optimal: float) -> str:
+    columns = ("strategy", "runs", "converged_runs", "median_convergence_episode",
+               "curve_convergence_episode", "final_steps_mean", "final_steps_iqm",
+               "final_to_optimal", "auc_mean_steps", "success_rate", "final_success_rate",
+               "leaves_mean", "p_improvement", "wall_time_s_mean", "steps_per_second_mean")
+    rows = []
+    for s in summaries:
+        final = float(np.mean(s.final_steps))
+        rows.append((
+            s.strategy, s.runs, s.converged_runs,
+            "" if s.median_convergence is None else s.median_convergence,
+            "" if s.curve_convergence is None else s.curve_convergence,
+            final, interquartile_mean(s.final_steps), final / optimal if optimal else math.nan,
+            float(np.mean(s.auc)), float(np.mean(s.success_rate)),
+            float(np.mean(s.final_success_rate)), float(np.mean(s.leaves)), s.p_improvement,
+            _nanmean(s.wall_time_s), _nanmean(s.steps_per_second),
+        ))
+    return store.format_rows(rows, columns)
+
+
+def render_markdown(config: ExperimentConfig, summaries: tuple[StrategySummary, ...],
+                    optimal: float, seed: int = 0) -> str:
+    """The report's Markdown text."""
+    cap = config.env.max_episode_steps
+    window, final_window = config.smoothing_window, config.final_window
+    episodes = config.episodes
+    lines = [
+        f"# {config.name}",
+        "",
+        config.description.strip() or "",
+        "",
+        f"- environment: `{config.env.id}`, maze `{config.env.maze}`, robot "
+        f"`{config.env.robot}`, mode `{config.env.mode}`, cap {cap} steps",
+        f"- {episodes} episodes per run; runs per strategy as listed (common random seeds: run "
+        f"i uses the same environment and agent seeds for every strategy; experiment seed "
+        f"{config.seed})",
+        f"- optimal number of steps: {_num(optimal)}",
+        f"- baseline for the probability of improvement: `{config.baseline_name}`",
+        f"- curves: each run smoothed by a trailing {window}-episode moving average, then the "
+        "mean over runs with a 95% percentile bootstrap band (runs resampled with replacement)",
+        "",
+        f"![Figure 4 analog]({FIGURE4_FILE})",
+        "",
+        "| strategy | runs | converged runs | episodes to convergence (median of runs) | "
+        "mean curve converges at | final steps, mean [95% CI] | IQM | final / optimal | "
+        "AUC (mean steps per episode) | success rate | final success | leaves | "
+        f"P(improvement) over {config.baseline_name} | wall time per run (s) | steps/s |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for s in summaries:
+        final = float(np.mean(s.final_steps))
+        low, high = bootstrap_ci(s.final_steps, seed=seed)
+        lines.append(
+            f"| {s.strategy} | {s.runs} | {s.converged_runs} | "
+            f"{_maybe(s.median_convergence)} | {_maybe(s.curve_convergence)} | "
+            f"{final:.1f} [{low:.1f}, {high:.1f}] | {interquartile_mean(s.final_steps):.1f} | "
+            f"{_ratio(final, optimal)} | {np.mean(s.auc):.1f} | "
+            f"{np.mean(s.success_rate):.3f} | {np.mean(s.final_success_rate):.3f} | "
+            f"{np.mean(s.leaves):.0f} | {_num(s.p_improvement, 2)} | "
+            f"{_num(_nanmean(s.wall_time_s), 1)} | {_num(_nanmean(s.steps_per_second), 0)} |"
+        )
+    lines += [
+        "",
+        f"![Leaves]({LEAVES_FILE})",
+        "",
+        "## Definitions",
+        "",
+        f"- **Episodes to convergence**: the first episode after which the run's {window}-episode "
+        f"moving average of steps stays within 10% of its final value (the mean of its last "
+        f"{final_window} episodes). *Not converged* when that only happens within the last "
+        f"{final_window} episodes, or when fewer than half of them reached the goal.",
+        f"- **Final steps**: mean steps of the last {final_window} episodes of a run (a capped "
+        f"episode counts as {cap} steps); the CI is a 95% percentile bootstrap over runs; "
+        "**IQM** is the interquartile mean over runs.",
+        "- **AUC**: area under the steps-per-episode curve divided by the number of episodes "
+        "(mean steps per episode over the whole run; lower is better).",
+        "- **Success rate**: fraction of all episodes that reached the goal; **final success**: "
+        f"of the last {final_window}.",
+        "- **Leaves**: size of the partition (grid cells for a grid agent) at the end of a run.",
+        "- **P(improvement)**: probability that a run of the strategy has fewer final steps than "
+        "a run of the baseline, Mann-Whitney U / (n_x n_y), ties counted one half (Agarwal et "
+        "al., NeurIPS 2021); 0.5 means no difference.",
+        "- **Wall time** and **steps/s** (environment and agent together) depend on the machine "
+        "and its load; everything else is determined by the seeds.",
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def _nanmean(values: np.ndarray) -> float:
+    finite = np.asarray(values, dtype=float)
+    finite = finite[np.isfinite(finite)]
+    return float(finite.mean()) if finite.size else math.nan
+
+
+def _maybe(value: float | None) -> str:
+    return "not converged" if value is None else f"{value:.0f}"
+
+
+def _num(value: float, digits: int = 1) -> str:
+    return "n/a" if not math.isfinite(value) else f"{value:.{digits}f}"
+
+
+def _ratio(value: float, optimal: float) -> str:
+    return "n/a" if not (math.isfinite(optimal) and optimal > 0) else f"{value / optimal:.2f}"

@@ -1,0 +1,38 @@
+"""Stand-ins for the real learner: a deterministic fake run, importable by worker processes.
+
+Tests put this folder on ``sys.path`` so that spawned workers (and subprocesses) import it as
+``standins``. Set ``STANDIN_LOG`` to a file to count computations (one line per run computed)
+and ``STANDIN_SLEEP`` to slow each run down.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+import zlib
+
+import numpy as np
+
+from experiments.runner import RunSpec
+from experiments.store import RunResult
+
+
+def fake_run(spec: RunSpec) -> RunResult:
+    """A learning-curve-shaped run that depends only on the run's seed and strategy."""
+    rng = np.random.default_rng([spec.seed, zlib.crc32(spec.strategy.name.encode())])
+    episodes, cap = spec.experiment.episodes, spec.experiment.env.max_episode_steps
+    level = 20 + 10 * rng.random()
+    curve = level + (cap - level) * np.exp(-np.arange(episodes) / (episodes / 5))
+    steps = np.minimum(cap, np.round(curve * rng.lognormal(0, 0.2, episodes))).astype(int)
+    rows = tuple(
+        (i + 1, int(s), 5.0 - 0.01 * (int(s) - 1) if s < cap else -0.01 * int(s), bool(s < cap),
+         bool(s >= cap), 1 + i // 3, int(rng.integers(0, 4)))
+        for i, s in enumerate(steps)
+    )
+    if os.environ.get("STANDIN_SLEEP"):
+        time.sleep(float(os.environ["STANDIN_SLEEP"]))
+    if os.environ.get("STANDIN_LOG"):
+        with open(os.environ["STANDIN_LOG"], "a", encoding="utf-8") as handle:
+            handle.write(spec.name + "\n")
+    return RunResult(spec.strategy.name, spec.run_index, spec.seed, rows, wall_time_s=0.5,
+                     env_steps=int(steps.sum()), optimal_steps=20.0, meta={"pid": os.getpid()})

@@ -1,0 +1,126 @@
+"""Experiment files: the shipped ones load, errors name the file and the key."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from experiments.config import (
+    ConfigError,
+    dumps,
+    load_config,
+    parse_config,
+    same_experiment,
+    with_overrides,
+)
+
+
+def _broken(data: dict, **edits: object) -> dict:
+    for path, value in edits.items():
+        section, key = path.split("__")
+        if section == "strategy0":
+            data["strategy"][0][key] = value
+        else:
+            data[section][key] = value
+    return data
+
+
+def test_small_config_values(small_config):
+    assert small_config.runs == 3
+    assert small_config.env.max_episode_steps == 300
+    assert [s.name for s in small_config.strategies] == ["eps", "adaptive+tabu"]
+    assert small_config.strategies[0].exploration_params == {"epsilon": 0.015}
+    assert small_config.baseline_name == "eps"
+
+
+@pytest.mark.parametrize(
+    ("edits", "named"),
+    [
+        ({"experiment__runz": 3}, "runz"),
+        ({"experiment__runs": 0}, "runs"),
+        ({"experiment__episodes": "many"}, "episodes"),
+        ({"env__mode": "wobbly"}, "mode"),
+        ({"env__max_episode_steps": True}, "max_episode_steps"),
+        ({"strategy0__epsilon": 0.1}, "epsilon"),
+        ({"strategy0__agent": "forest"}, "agent"),
+        ({"strategy0__name": "a/b"}, "name"),
+        ({"experiment__baseline": "nope"}, "baseline"),
+        ({"strategy0__resolution": 4}, "resolution"),
+    ],
+)
+def test_errors_name_the_key(small_data, edits, named):
+    with pytest.raises(ConfigError) as error:
+        parse_config(_broken(small_data, **edits), source="bad.toml")
+    message = str(error.value)
+    assert "bad.toml" in message
+    assert named in message
+
+
+def test_grid_needs_resolution(small_data):
+    data = small_data
+    data["strategy"].append({"name": "grid", "agent": "grid"})
+    with pytest.raises(ConfigError, match="resolution"):
+        parse_config(data, source="grid.toml")
+    data["strategy"][-1]["resolution"] = [10, 12]
+    assert parse_config(data).strategies[-1].resolution == (10, 12)
+
+
+def test_duplicate_strategy_names_rejected(small_data):
+    data = small_data
+    data["strategy"][1]["name"] = "eps"
+    with pytest.raises(ConfigError, match="used twice"):
+        parse_config(data)
+
+
+def test_bad_toml_names_the_file(tmp_path: Path):
+    path = tmp_path / "broken.toml"
+    path.write_text("[experiment\nname = 1\n")
+    with pytest.raises(ConfigError, match=r"broken\.toml"):
+        load_config(path)
+
+
+def test_missing_file_lists_shipped_ones():
+    with pytest.raises(ConfigError, match="paper_fig4"):
+        load_config("no_such_experiment")
+
+
+def test_round_trip_through_toml(small_config, tmp_path: Path):
+    path = tmp_path / "resolved.toml"
+    path.write_text(dumps(small_config))
+    again = load_config(path)
+    assert same_experiment(small_config, again) == []
+    assert again.strategies == small_config.strategies
+
+
+def test_overrides_and_differences(small_config):
+    more = with_overrides(small_config, runs=10, episodes=None)
+    assert more.runs == 10
+    assert more.episodes == small_config.episodes
+    assert same_experiment(small_config, more) == []
+    longer = with_overrides(small_config, episodes=500, max_episode_steps=100)
+    assert same_experiment(small_config, longer) == ["env.max_episode_steps",
+                                                     "experiment.episodes"]
+    with pytest.raises(ConfigError, match="--runs"):
+        with_overrides(small_config, runs=0)
+
+
+@pytest.mark.parametrize("name", ["paper_fig4", "quick"])
+def test_shipped_experiments_load(name):
+    config = load_config(name)
+    assert config.strategies
+    assert config.baseline_name in {s.name for s in config.strategies}
+
+
+def test_paper_fig4_is_the_papers_setting():
+    config = load_config("paper_fig4")
+    assert (config.runs, config.episodes, config.env.max_episode_steps) == (30, 4000, 5000)
+    assert config.agent["alpha"] == 0.3
+    assert config.agent["gamma"] == 0.99
+    explorations = {s.exploration for s in config.strategies}
+    assert {"epsilon-greedy", "adaptive", "tabu", "adaptive+tabu", "vdbe"} <= explorations
+    assert sum(s.agent == "grid" for s in config.strategies) >= 2
+    epsilons = {s.exploration_params.get("epsilon") for s in config.strategies
+                if s.exploration == "epsilon-greedy" and s.agent == "tree"}
+    assert 0.015 in epsilons
+    assert len(epsilons) >= 3

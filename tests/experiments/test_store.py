@@ -1,0 +1,45 @@
+"""Per-run result files: atomic writes, exact number format, round trip."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from experiments import store
+
+
+def test_atomic_write_replaces_and_leaves_no_temporary(tmp_path: Path):
+    path = tmp_path / "sub" / "file.csv"
+    store.atomic_write_text(path, "old\n")
+    store.atomic_write_text(path, "new\n")
+    assert path.read_text() == "new\n"
+    assert sorted(p.name for p in path.parent.iterdir()) == ["file.csv"]
+    assert path.stat().st_mode & 0o777 == 0o644
+
+
+def test_floats_are_written_exactly():
+    value = 0.1 + 0.2
+    text = store.format_rows([(1, 2, value, True, False, 3, 0)])
+    assert text.splitlines() == [",".join(store.COLUMNS), f"1,2,{value!r},1,0,3,0"]
+    assert float(text.splitlines()[1].split(",")[2]) == value
+
+
+def test_run_round_trip(tmp_path: Path):
+    rows = ((1, 40, 4.61, True, False, 1, 2), (2, 5000, -50.0, False, True, 3, 0))
+    result = store.RunResult("eps", 0, 123, rows, wall_time_s=2.0, env_steps=5040,
+                             optimal_steps=30.0)
+    store.write_run(tmp_path, result)
+    assert store.is_finished(tmp_path, "eps__123")
+    data = store.read_run(tmp_path, "eps__123")
+    np.testing.assert_array_equal(data.steps, [40, 5000])
+    np.testing.assert_array_equal(data.columns["success"], [1, 0])
+    assert data.columns["return"].tolist() == [4.61, -50.0]
+    assert data.meta["steps_per_second"] == 2520.0
+    assert data.meta["optimal_steps"] == 30.0
+
+
+def test_stale_temporaries_are_removed(tmp_path: Path):
+    (tmp_path / ".eps__1.csv.abc.tmp").write_text("half")
+    assert store.remove_stale_temporaries(tmp_path) == 1
+    assert list(tmp_path.iterdir()) == []
