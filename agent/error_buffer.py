@@ -31,29 +31,29 @@ class ErrorBuffer:
     def add(self, xs: list[list[float]], deltas: list[float]) -> None:
         """Append the pairs ``(xs[k], deltas[k])``."""
         dims, capacity, inputs, errors = self.dims, self.capacity, self.inputs, self.errors
+        head, count, total, total_sq = self.head, self.count, self.sum, self.sum_sq
         for x, e in zip(xs, deltas, strict=True):
-            i = self.head
-            base = i * dims
-            for j in range(dims):
-                inputs[base + j] = x[j]
-            if self.count == capacity:
-                old = errors[i]
-                self.sum -= old
-                self.sum_sq -= old * old
+            base = head * dims
+            inputs[base : base + dims] = array("d", x)
+            if count == capacity:
+                old = errors[head]
+                total -= old
+                total_sq -= old * old
             else:
-                self.count += 1
-            errors[i] = e
-            self.sum += e
-            self.sum_sq += e * e
-            self.head = i + 1
-            if self.head == capacity:
-                self.head = 0
-                self._resum()
+                count += 1
+            errors[head] = e
+            total += e
+            total_sq += e * e
+            head += 1
+            if head == capacity:
+                head = 0
+                self.count = count
+                total, total_sq = self._exact_sums()
+        self.head, self.count, self.sum, self.sum_sq = head, count, total, total_sq
 
-    def _resum(self) -> None:
+    def _exact_sums(self) -> tuple[float, float]:
         errs = np.frombuffer(self.errors, dtype=np.float64)[: self.count]
-        self.sum = float(errs.sum())
-        self.sum_sq = float(np.dot(errs, errs))
+        return float(errs.sum()), float(np.dot(errs, errs))
 
     def mean_variance(self) -> tuple[float, float]:
         """Mean and (population) variance of the stored errors; (0, 0) when empty."""

@@ -40,3 +40,11 @@ class TreeAgent(SMDPAgent):
     @property
     def depth(self) -> int:
         return self.partition.depth
+
+    def split_leaf(self, leaf: int, dim: int, value: float) -> tuple[int, int]:
+        """Split ``leaf`` at ``x[dim] = value`` by hand (the children get Q-bar as in a learned
+        split); returns the children's ids. For tests, benchmarks and hand-made initial trees.
+        """
+        children = self.partition.split(leaf, dim, value)
+        self._grow(leaf, children)
+        return children

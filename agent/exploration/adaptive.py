@@ -52,7 +52,12 @@ def adaptive_epsilon(
     total = sum(counts)
     if total == 0:
         return 1.0
-    unused = 1.0 - normalized_entropy(counts)
+    h = 0.0  # eqs. (2)-(4) inline: this runs once per epoch
+    for n in counts:
+        if n:
+            p = n / total
+            h -= p * math.log(p)
+    unused = 1.0 - (h / math.log(len(counts)) if len(counts) > 1 else 0.0)
     magnitude = abs(delta_q)
     if magnitude / (total * c_n) < c_h:
         scale = total * c_n if variant == "cn_exponent" else total

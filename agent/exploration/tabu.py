@@ -58,6 +58,7 @@ class Tabu(Exploration):
         self.min_capacity = min_capacity
         self.on_split_policy: SplitPolicy = on_split
         self.successes = 0
+        self._capacity = initial_capacity
         self._fifo: deque[tuple[int, int]] = deque()
         self._listed: set[tuple[int, int]] = set()
 
@@ -68,9 +69,7 @@ class Tabu(Exploration):
     @property
     def capacity(self) -> int:
         """Current capacity L_k."""
-        return tabu_capacity(
-            self.successes, self.initial_capacity, self.shrink_every, self.min_capacity
-        )
+        return self._capacity
 
     @property
     def entries(self) -> list[tuple[int, int]]:
@@ -101,12 +100,16 @@ class Tabu(Exploration):
         if pair not in self._listed:
             self._fifo.append(pair)
             self._listed.add(pair)
-            self._trim()
+            if len(self._fifo) > self._capacity:
+                self._trim()
 
     def on_episode_end(self, success: bool) -> None:
         self.base.on_episode_end(success)
         if success:
             self.successes += 1
+            self._capacity = tabu_capacity(
+                self.successes, self.initial_capacity, self.shrink_every, self.min_capacity
+            )
             self._trim()
 
     def on_split(self, parent: int, children: tuple[int, int]) -> None:
@@ -145,6 +148,9 @@ class Tabu(Exploration):
 
     def load_state_dict(self, state: dict[str, Any]) -> None:
         self.successes = int(state["successes"])
+        self._capacity = tabu_capacity(
+            self.successes, self.initial_capacity, self.shrink_every, self.min_capacity
+        )
         self._fifo = deque((int(leaf), int(action)) for leaf, action in state["fifo"])
         self._listed = set(self._fifo)
         self.base.load_state_dict(state["base"])
