@@ -136,6 +136,18 @@ class ProjectObservation(gym.ObservationWrapper):
 
 def load_agent(path: Path) -> Any:
     """A saved agent (tree or grid, whichever the file holds)."""
-    from agent import load_agent as load
+    from agent import SMDPAgent
 
-    return load(path)
+    return SMDPAgent.load(path)
+
+
+def maze_geometry(env: gym.Env) -> tuple[Any, np.ndarray]:
+    """The env's maze layout and the unit direction of each action (for drawing)."""
+    from bullet_maze import load_layout
+    from bullet_maze.actions import DIRECTIONS
+
+    unwrapped = env.unwrapped
+    layout = getattr(unwrapped, "layout", None)
+    if layout is None:
+        layout = load_layout(unwrapped.spec.kwargs.get("maze", "paper"))
+    return layout, DIRECTIONS

@@ -124,3 +124,33 @@ def test_paper_fig4_is_the_papers_setting():
                 if s.exploration == "epsilon-greedy" and s.agent == "tree"}
     assert 0.015 in epsilons
     assert len(epsilons) >= 3
+
+
+@pytest.mark.parametrize(
+    ("edit", "named"),
+    [
+        (lambda d: d["agent"].update(alpah=0.3), "alpah"),
+        (lambda d: d["agent"].update(alpha=7.0), "alpha"),
+        (lambda d: d["strategy"][0]["exploration_params"].update(epsilonn=0.1), "epsilonn"),
+        (lambda d: d["strategy"][1].update(exploration="curiosity"), "curiosity"),
+        (lambda d: d["strategy"][1].update(config={"split_min_samples": 1}), "split_min_samples"),
+    ],
+)
+def test_agent_parameters_are_checked_against_the_agent(small_data, edit, named):
+    pytest.importorskip("agent")
+    from experiments.factory import check_agent_params
+
+    edit(small_data)
+    config = parse_config(small_data, source="agent.toml")
+    with pytest.raises(ConfigError) as error:
+        check_agent_params(config)
+    assert "agent.toml" in str(error.value)
+    assert named in str(error.value)
+
+
+def test_shipped_experiments_pass_the_agent_check():
+    pytest.importorskip("agent")
+    from experiments.factory import check_agent_params
+
+    for name in ("paper_fig4", "quick"):
+        check_agent_params(load_config(name))

@@ -1,0 +1,68 @@
+"""Greedy episodes of a trained agent: the evaluation behind ``run.py evaluate`` and ``render``."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Episode:
+    """One greedy episode."""
+
+    steps: int
+    episode_return: float
+    success: bool
+    truncated: bool
+    collisions: int
+    positions: np.ndarray
+    """Robot (x, y) at every step, the reset position first: (steps + 1) x 2."""
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """Greedy episodes of an agent, with their summary."""
+
+    episodes: tuple[Episode, ...]
+
+    @property
+    def success_rate(self) -> float:
+        """Fraction of episodes that reached the goal."""
+        return float(np.mean([e.success for e in self.episodes]))
+
+    @property
+    def steps(self) -> np.ndarray:
+        """Steps of each episode (a capped episode counts its cap)."""
+        return np.array([e.steps for e in self.episodes])
+
+    @property
+    def successful_steps(self) -> np.ndarray:
+        """Steps of the episodes that reached the goal."""
+        return np.array([e.steps for e in self.episodes if e.success])
+
+
+def greedy_episode(env: Any, agent: Any, seed: int | None = None,
+                   collision_key: str = "collision") -> Episode:
+    """Run ``agent.predict(obs, deterministic=True)`` until the episode ends."""
+    obs, _ = env.reset(seed=seed)
+    positions = [np.asarray(obs, dtype=float)[:2].copy()]
+    steps, total, collisions = 0, 0.0, 0
+    success = truncated = False
+    while True:
+        obs, reward, terminated, truncated, info = env.step(agent.predict(obs))
+        steps += 1
+        total += float(reward)
+        collisions += bool(info.get(collision_key, False))
+        positions.append(np.asarray(obs, dtype=float)[:2].copy())
+        if terminated or truncated:
+            success = bool(info.get("is_success", terminated))
+            break
+    return Episode(steps, total, success, bool(truncated), collisions, np.array(positions))
+
+
+def evaluate(env: Any, agent: Any, episodes: int, seed: int = 0) -> Evaluation:
+    """``episodes`` greedy episodes; the first reset is seeded, so the whole set repeats."""
+    return Evaluation(tuple(greedy_episode(env, agent, seed if i == 0 else None)
+                            for i in range(episodes)))

@@ -1,0 +1,50 @@
+"""The report of an experiment, from stand-in runs: real PNGs, a table row per strategy."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from experiments import runner
+from experiments.backends import SerialBackend
+from experiments.report import write_report
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def assert_png(path: Path, min_bytes: int = 5_000) -> None:
+    """``path`` is a real PNG of some size."""
+    data = path.read_bytes()
+    assert data[:8] == PNG_SIGNATURE
+    assert len(data) >= min_bytes
+
+
+def test_report_files_and_table(small_config, standins, tmp_path: Path):
+    runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run)
+    report = write_report(small_config, tmp_path)
+    for figure in report.figures:
+        assert_png(figure)
+    text = report.markdown.read_text()
+    assert "![Figure 4 analog](figure4.png)" in text
+    table = [line for line in text.splitlines() if line.startswith("| ")]
+    assert [line.split("|")[1].strip() for line in table[1:]] == ["eps", "adaptive+tabu"]
+    assert "Episodes to convergence" in text
+    with report.summary_csv.open() as handle:
+        rows = list(csv.DictReader(handle))
+    assert [r["strategy"] for r in rows] == ["eps", "adaptive+tabu"]
+    baseline = rows[0]
+    assert float(baseline["p_improvement"]) == 0.5
+    assert float(baseline["final_to_optimal"]) == float(baseline["final_steps_mean"]) / 20.0
+    assert 0.0 <= float(rows[1]["success_rate"]) <= 1.0
+    assert report.optimal_steps == 20.0
+    assert np.isclose(float(baseline["wall_time_s_mean"]), 0.5)
+
+
+def test_report_of_a_partial_experiment(small_config, standins, tmp_path: Path):
+    runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run)
+    for path in list((tmp_path / "runs").glob("adaptive+tabu__*.csv"))[:2]:
+        path.unlink()
+    report = write_report(small_config, tmp_path)
+    assert [s.runs for s in report.summaries] == [3, 1]
