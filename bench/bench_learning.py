@@ -1,0 +1,130 @@
+"""Speed of the learning loop (env + agent) and of the parallel runner.
+
+Three measurements, each printed as a ratio against its reference:
+
+1. steps per second of one learning run in kinematic mode (the proposed agent in the default
+   maze), against the target of 20,000 per core, and against the bare environment stepped with
+   random actions (what the agent costs);
+2. the same small experiment with 1 and with 2 workers: the speed-up, against the target 1.8x
+   (run with nothing else busy: two workers need two free cores);
+3. resident memory of a worker over a long run, sampled every few episodes: flat or not.
+
+    python bench/bench_learning.py                  # all three, a few minutes
+    python bench/bench_learning.py --only speed     # just (1)
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from experiments import factory, runner
+from experiments.backends import ProcessBackend
+from experiments.config import load_config, with_overrides
+from experiments.seeding import derive_seeds, run_seed
+from experiments.training import resident_memory_mb, train
+
+
+def bare_env_speed(steps: int, seed: int = 0) -> float:
+    """Steps per second of the environment alone, random actions, resets included."""
+    config = load_config("quick")
+    env = factory.make_env(config.env)
+    rng = np.random.default_rng(seed)
+    actions = rng.integers(0, env.action_space.n, steps)
+    env.reset(seed=seed)
+    start = time.perf_counter()
+    for action in actions:
+        _, _, terminated, truncated, _ = env.step(int(action))
+        if terminated or truncated:
+            env.reset()
+    elapsed = time.perf_counter() - start
+    env.close()
+    return steps / elapsed
+
+
+def learning_speed(episodes: int, strategy: str = "adaptive+tabu") -> tuple[float, int, float]:
+    """Steps per second of one learning run; also its steps and wall time."""
+    config = with_overrides(load_config("quick"), episodes=episodes)
+    spec = config.strategy(strategy)
+    seeds = derive_seeds(run_seed(config.seed, 0))
+    env = factory.make_env(config.env)
+    agent = factory.make_agent(config, spec, env, seeds.agent)
+    training = train(env, agent, episodes, env_seed=seeds.env)
+    env.close()
+    return training.steps_per_second, training.env_steps, training.wall_time_s
+
+
+def worker_speedup(runs: int, episodes: int) -> tuple[float, float, bool]:
+    """Wall time of one small experiment with 1 and 2 workers; and whether the CSVs agree."""
+    config = with_overrides(load_config("quick"), runs=runs, episodes=episodes)
+    config = dataclasses.replace(config, time_budget_s=None)
+    times = []
+    with tempfile.TemporaryDirectory() as folder:
+        for workers in (1, 2):
+            out = Path(folder) / f"w{workers}"
+            start = time.perf_counter()
+            runner.run_experiment(config, out, ProcessBackend(workers))
+            times.append(time.perf_counter() - start)
+        same = ((Path(folder) / "w1" / runner.EPISODES_FILE).read_bytes()
+                == (Path(folder) / "w2" / runner.EPISODES_FILE).read_bytes())
+    return times[0], times[1], same
+
+
+def memory_profile(episodes: int, every: int) -> list[float]:
+    """Resident memory (MB) of this process every ``every`` episodes of a long run."""
+    config = with_overrides(load_config("quick"), episodes=episodes)
+    seeds = derive_seeds(run_seed(config.seed, 0))
+    env = factory.make_env(config.env)
+    agent = factory.make_agent(config, config.strategies[0], env, seeds.agent)
+    samples = [resident_memory_mb()]
+    training = train(env, agent, episodes, env_seed=seeds.env, memory_every=every)
+    env.close()
+    return samples + training.rss_mb
+
+
+def main() -> None:
+    """Run the measurements chosen on the command line and print them."""
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--only", choices=("speed", "workers", "memory"),
+                        help="run one measurement only")
+    parser.add_argument("--episodes", type=int, default=300,
+                        help="episodes of the speed measurement (default: 300)")
+    parser.add_argument("--runs", type=int, default=4,
+                        help="runs per strategy of the 1-vs-2-worker experiment (default: 4)")
+    parser.add_argument("--worker-episodes", type=int, default=150,
+                        help="episodes per run of the 1-vs-2-worker experiment (default: 150)")
+    parser.add_argument("--memory-episodes", type=int, default=4000,
+                        help="episodes of the memory run (default: 4000, as the paper)")
+    args = parser.parse_args()
+
+    if args.only in (None, "speed"):
+        bare = bare_env_speed(50_000)
+        rate, steps, wall = learning_speed(args.episodes)
+        print(f"bare env (random actions):      {bare:>10,.0f} steps/s")
+        print(f"learning loop (env + agent):    {rate:>10,.0f} steps/s "
+              f"({steps:,} steps in {wall:.1f} s, {args.episodes} episodes)")
+        print(f"  vs target 20,000 steps/s/core: {rate / 20_000:.2f}x; agent share of the "
+              f"time: {1 - rate / bare:.0%}")
+    if args.only in (None, "workers"):
+        one, two, same = worker_speedup(args.runs, args.worker_episodes)
+        print(f"experiment {args.runs} runs x 2 strategies x {args.worker_episodes} episodes: "
+              f"1 worker {one:.1f} s, 2 workers {two:.1f} s, speed-up {one / two:.2f}x "
+              f"(target 1.8x); identical CSVs: {same}")
+    if args.only in (None, "memory"):
+        every = max(1, args.memory_episodes // 20)
+        samples = memory_profile(args.memory_episodes, every)
+        half = len(samples) // 2
+        print(f"memory over {args.memory_episodes} episodes (MB every {every}): "
+              + " ".join(f"{m:.0f}" for m in samples))
+        print(f"  first sample after start {samples[1]:.1f} MB, last {samples[-1]:.1f} MB; "
+              f"growth over the second half {samples[-1] - samples[half]:+.1f} MB")
+
+
+if __name__ == "__main__":
+    main()
