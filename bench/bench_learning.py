@@ -70,8 +70,9 @@ def worker_speedup(runs: int, episodes: int) -> tuple[float, float, bool]:
             start = time.perf_counter()
             runner.run_experiment(config, out, ProcessBackend(workers))
             times.append(time.perf_counter() - start)
-        same = ((Path(folder) / "w1" / runner.EPISODES_FILE).read_bytes()
-                == (Path(folder) / "w2" / runner.EPISODES_FILE).read_bytes())
+        same = (Path(folder) / "w1" / runner.EPISODES_FILE).read_bytes() == (
+            Path(folder) / "w2" / runner.EPISODES_FILE
+        ).read_bytes()
     return times[0], times[1], same
 
 
@@ -89,41 +90,66 @@ def memory_profile(episodes: int, every: int) -> list[float]:
 
 def main() -> None:
     """Run the measurements chosen on the command line and print them."""
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--only", choices=("speed", "workers", "memory"),
-                        help="run one measurement only")
-    parser.add_argument("--episodes", type=int, default=300,
-                        help="episodes of the speed measurement (default: 300)")
-    parser.add_argument("--runs", type=int, default=4,
-                        help="runs per strategy of the 1-vs-2-worker experiment (default: 4)")
-    parser.add_argument("--worker-episodes", type=int, default=150,
-                        help="episodes per run of the 1-vs-2-worker experiment (default: 150)")
-    parser.add_argument("--memory-episodes", type=int, default=4000,
-                        help="episodes of the memory run (default: 4000, as the paper)")
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    parser.add_argument(
+        "--only", choices=("speed", "workers", "memory"), help="run one measurement only"
+    )
+    parser.add_argument(
+        "--episodes", type=int, default=300, help="episodes of the speed measurement (default: 300)"
+    )
+    parser.add_argument(
+        "--runs",
+        type=int,
+        default=4,
+        help="runs per strategy of the 1-vs-2-worker experiment (default: 4)",
+    )
+    parser.add_argument(
+        "--worker-episodes",
+        type=int,
+        default=150,
+        help="episodes per run of the 1-vs-2-worker experiment (default: 150)",
+    )
+    parser.add_argument(
+        "--memory-episodes",
+        type=int,
+        default=4000,
+        help="episodes of the memory run (default: 4000, as the paper)",
+    )
     args = parser.parse_args()
 
     if args.only in (None, "speed"):
         bare = bare_env_speed(50_000)
         rate, steps, wall = learning_speed(args.episodes)
         print(f"bare env (random actions):      {bare:>10,.0f} steps/s")
-        print(f"learning loop (env + agent):    {rate:>10,.0f} steps/s "
-              f"({steps:,} steps in {wall:.1f} s, {args.episodes} episodes)")
-        print(f"  vs target 20,000 steps/s/core: {rate / 20_000:.2f}x; agent share of the "
-              f"time: {1 - rate / bare:.0%}")
+        print(
+            f"learning loop (env + agent):    {rate:>10,.0f} steps/s "
+            f"({steps:,} steps in {wall:.1f} s, {args.episodes} episodes)"
+        )
+        print(
+            f"  vs target 20,000 steps/s/core: {rate / 20_000:.2f}x; agent share of the "
+            f"time: {1 - rate / bare:.0%}"
+        )
     if args.only in (None, "workers"):
         one, two, same = worker_speedup(args.runs, args.worker_episodes)
-        print(f"experiment {args.runs} runs x 2 strategies x {args.worker_episodes} episodes: "
-              f"1 worker {one:.1f} s, 2 workers {two:.1f} s, speed-up {one / two:.2f}x "
-              f"(target 1.8x); identical CSVs: {same}")
+        print(
+            f"experiment {args.runs} runs x 2 strategies x {args.worker_episodes} episodes: "
+            f"1 worker {one:.1f} s, 2 workers {two:.1f} s, speed-up {one / two:.2f}x "
+            f"(target 1.8x); identical CSVs: {same}"
+        )
     if args.only in (None, "memory"):
         every = max(1, args.memory_episodes // 20)
         samples = memory_profile(args.memory_episodes, every)
         half = len(samples) // 2
-        print(f"memory over {args.memory_episodes} episodes (MB every {every}): "
-              + " ".join(f"{m:.0f}" for m in samples))
-        print(f"  first sample after start {samples[1]:.1f} MB, last {samples[-1]:.1f} MB; "
-              f"growth over the second half {samples[-1] - samples[half]:+.1f} MB")
+        print(
+            f"memory over {args.memory_episodes} episodes (MB every {every}): "
+            + " ".join(f"{m:.0f}" for m in samples)
+        )
+        print(
+            f"  first sample after start {samples[1]:.1f} MB, last {samples[-1]:.1f} MB; "
+            f"growth over the second half {samples[-1] - samples[half]:+.1f} MB"
+        )
 
 
 if __name__ == "__main__":
