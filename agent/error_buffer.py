@@ -8,6 +8,7 @@ sums are recomputed exactly each time the ring wraps, so rounding cannot drift.
 from __future__ import annotations
 
 from array import array
+from operator import mul
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,6 +33,16 @@ class ErrorBuffer:
         """Append the pairs ``(xs[k], deltas[k])``."""
         dims, capacity, inputs, errors = self.dims, self.capacity, self.inputs, self.errors
         head, count, total, total_sq = self.head, self.count, self.sum, self.sum_sq
+        n = len(deltas)
+        if head + n < capacity and count + n <= capacity:
+            # the usual case, no wrap and nothing overwritten: two slice copies
+            inputs[head * dims : (head + n) * dims] = array("d", [v for x in xs for v in x])
+            errors[head : head + n] = array("d", deltas)
+            self.head = head + n
+            self.count = count + n
+            self.sum = total + sum(deltas)
+            self.sum_sq = total_sq + sum(map(mul, deltas, deltas))
+            return
         for x, e in zip(xs, deltas, strict=True):
             base = head * dims
             inputs[base : base + dims] = array("d", x)

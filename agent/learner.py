@@ -22,6 +22,7 @@ from agent.episode_stats import EpisodeStats
 from agent.exploration import Exploration, make_exploration
 from agent.inspection import LeafInfo, render_partition
 from agent.partition import Partition
+from agent.random_stream import UniformStream
 from agent.smdp import epoch_returns, leaf_update
 from agent.spaces import action_count, observation_bounds
 
@@ -72,6 +73,8 @@ class SMDPAgent:
             raise TypeError(f"seed must be an int, got {seed!r}")
         self.seed = int(seed)
         self.rng = np.random.default_rng(self.seed)
+        self.uniform = UniformStream(self.rng)
+        """Every draw of the exploration strategies, from :attr:`rng` in blocks."""
         self.partition: Partition = self._make_partition(low, high)
         q0 = self.config.q_init
         self.q: list[list[float]] = [[q0] * self.n_actions for _ in range(self.partition.n_ids)]
@@ -115,7 +118,7 @@ class SMDPAgent:
         q = self.q
         leaf_of = self.partition.leaf_of
         strategy = self.exploration
-        rng = self.rng
+        rng = self.uniform
         cap = cfg.max_epoch_steps if cfg.max_epoch_steps is not None else 1 << 62
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
@@ -220,7 +223,7 @@ class SMDPAgent:
         row = self.q[leaf]
         if deterministic:
             return max(range(self.n_actions), key=row.__getitem__)
-        return self.exploration.select(leaf, row, self.rng)
+        return self.exploration.select(leaf, row, self.uniform)
 
     def leaf_of(self, obs: Any) -> int:
         """Id of the leaf that holds ``obs``."""

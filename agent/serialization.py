@@ -47,7 +47,7 @@ def save_agent(agent: SMDPAgent, path: str | PathLike[str]) -> None:
         "seed": agent.seed,
         "episodes_done": agent.episodes_done,
         "exploration": exploration_spec(agent.exploration),
-        "rng": agent.rng.bit_generator.state,
+        "rng": agent.uniform.state(),
         "partition": partition_meta,
     }
     arrays: dict[str, Any] = {
@@ -100,5 +100,5 @@ def load_agent(path: str | PathLike[str]) -> SMDPAgent:
     agent.q = arrays["q"].tolist()
     agent.visits = arrays["visits"].tolist()
     agent.episodes_done = int(meta["episodes_done"])
-    agent.rng.bit_generator.state = meta["rng"]
+    agent.uniform.restore(meta["rng"])
     return agent

@@ -2,18 +2,25 @@
 
 A strategy is told about the learner's events through hooks (all no-ops by default) and picks
 the action at each decision point (the start of an SMDP epoch, section IV.A). Strategies compose:
-:class:`~agent.exploration.tabu.Tabu` wraps any other strategy. Every random draw comes from the
-``numpy.random.Generator`` the agent passes in.
+:class:`~agent.exploration.tabu.Tabu` wraps any other strategy. Every random draw is a
+``rng.random()`` on the source the agent passes in: a ``numpy.random.Generator``, or the agent's
+:class:`~agent.random_stream.UniformStream` that draws from its seeded generator in blocks.
 """
 
 from __future__ import annotations
 
-from typing import Any
-
-import numpy as np
+from typing import Any, Protocol
 
 
-def greedy_action(q_row: list[float], rng: np.random.Generator) -> int:
+class UniformSource(Protocol):
+    """Anything with ``random() -> float`` uniform in [0, 1), e.g. ``numpy.random.Generator``."""
+
+    def random(self) -> float:
+        """One uniform draw."""
+        ...
+
+
+def greedy_action(q_row: list[float], rng: UniformSource) -> int:
     """Index of the largest value of ``q_row``; ties are broken uniformly with ``rng``.
 
     A draw is made only when there is a tie, so the draws depend on the values alone.
@@ -46,7 +53,7 @@ class Exploration:
         """The probability of a uniformly random action in ``leaf``."""
         return 0.0
 
-    def select(self, leaf: int, q_row: list[float], rng: np.random.Generator) -> int:
+    def select(self, leaf: int, q_row: list[float], rng: UniformSource) -> int:
         """Epsilon-greedy choice with :meth:`epsilon` (section III): random with probability
         epsilon, else the greedy action of ``q_row`` (one draw, plus one per random action or tie).
         """

@@ -15,9 +15,7 @@ from __future__ import annotations
 from collections import deque
 from typing import Any, Literal
 
-import numpy as np
-
-from agent.exploration.base import Exploration
+from agent.exploration.base import Exploration, UniformSource
 
 SplitPolicy = Literal["drop", "inherit"]
 _NEG_INF = float("-inf")
@@ -60,7 +58,7 @@ class Tabu(Exploration):
         self.successes = 0
         self._capacity = initial_capacity
         self._fifo: deque[tuple[int, int]] = deque()
-        self._listed: set[tuple[int, int]] = set()
+        self._by_leaf: dict[int, set[int]] = {}  # the same pairs, for an O(1) look-up per leaf
 
     @property
     def name(self) -> str:  # type: ignore[override]
@@ -83,12 +81,10 @@ class Tabu(Exploration):
     def epsilon(self, leaf: int) -> float:
         return self.base.epsilon(leaf)
 
-    def select(self, leaf: int, q_row: list[float], rng: np.random.Generator) -> int:
-        listed = self._listed
-        if listed:
-            masked = [_NEG_INF if (leaf, a) in listed else v for a, v in enumerate(q_row)]
-            if max(masked) > _NEG_INF:  # else aspiration: every action is tabu
-                q_row = masked
+    def select(self, leaf: int, q_row: list[float], rng: UniformSource) -> int:
+        tabu = self._by_leaf.get(leaf)
+        if tabu and len(tabu) < len(q_row):  # else aspiration: every action is tabu
+            q_row = [_NEG_INF if a in tabu else v for a, v in enumerate(q_row)]
         return self.base.select(leaf, q_row, rng)
 
     def update(self, leaf: int, action: int, delta_q: float) -> None:
@@ -96,12 +92,15 @@ class Tabu(Exploration):
 
     def on_epoch_end(self, leaf: int, action: int) -> None:
         self.base.on_epoch_end(leaf, action)
-        pair = (leaf, action)
-        if pair not in self._listed:
-            self._fifo.append(pair)
-            self._listed.add(pair)
-            if len(self._fifo) > self._capacity:
-                self._trim()
+        tabu = self._by_leaf.get(leaf)
+        if tabu is None:
+            tabu = self._by_leaf[leaf] = set()
+        elif action in tabu:
+            return
+        tabu.add(action)
+        self._fifo.append((leaf, action))
+        if len(self._fifo) > self._capacity:
+            self._trim()
 
     def on_episode_end(self, success: bool) -> None:
         self.base.on_episode_end(success)
@@ -114,7 +113,7 @@ class Tabu(Exploration):
 
     def on_split(self, parent: int, children: tuple[int, int]) -> None:
         self.base.on_split(parent, children)
-        if not any(leaf == parent for leaf, _ in self._fifo):
+        if parent not in self._by_leaf:
             return
         kept: list[tuple[int, int]] = []
         for leaf, action in self._fifo:
@@ -122,14 +121,23 @@ class Tabu(Exploration):
                 kept.append((leaf, action))
             elif self.on_split_policy == "inherit":
                 kept.extend((child, action) for child in children)
-        self._fifo = deque(kept)
-        self._listed = set(kept)
+        self._set_entries(kept)
         self._trim()
 
+    def _set_entries(self, pairs: list[tuple[int, int]]) -> None:
+        self._fifo = deque(pairs)
+        self._by_leaf = {}
+        for leaf, action in pairs:
+            self._by_leaf.setdefault(leaf, set()).add(action)
+
     def _trim(self) -> None:
-        capacity = self.capacity
+        capacity = self._capacity
         while len(self._fifo) > capacity:
-            self._listed.discard(self._fifo.popleft())
+            leaf, action = self._fifo.popleft()
+            tabu = self._by_leaf[leaf]
+            tabu.discard(action)
+            if not tabu:
+                del self._by_leaf[leaf]
 
     def params(self) -> dict[str, Any]:
         return {
@@ -151,8 +159,7 @@ class Tabu(Exploration):
         self._capacity = tabu_capacity(
             self.successes, self.initial_capacity, self.shrink_every, self.min_capacity
         )
-        self._fifo = deque((int(leaf), int(action)) for leaf, action in state["fifo"])
-        self._listed = set(self._fifo)
+        self._set_entries([(int(leaf), int(action)) for leaf, action in state["fifo"]])
         self.base.load_state_dict(state["base"])
 
     def __repr__(self) -> str:
