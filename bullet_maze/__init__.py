@@ -1,0 +1,54 @@
+"""bullet_maze: the robot maze of section V.A of Hwang, Li and Jiang, "Adaptive Exploration
+Strategies for Reinforcement Learning", as a Gymnasium environment in headless pybullet.
+
+Importing the package registers ``BulletMaze-v0`` (keyword arguments ``maze``, ``robot``,
+``mode``, ...) and one id per shipped layout, ``BulletMaze-<layout>-v0``; each is capped at
+5,000 steps by its ``max_episode_steps`` (section V.A).
+"""
+
+from __future__ import annotations
+
+from gymnasium.envs.registration import register, registry
+
+from bullet_maze.actions import Action
+from bullet_maze.env import BulletMazeEnv
+from bullet_maze.layout import MazeLayout, Obstacle, Wall, available_layouts, load_layout
+from bullet_maze.params import MAX_EPISODE_STEPS, METRES_PER_UNIT, PhysicsParams, TaskParams
+from bullet_maze.planning import PhysicalLimit, shortest_path
+from bullet_maze.robots import HolonomicRobot, HuskyRobot, Robot
+
+ENTRY_POINT = "bullet_maze.env:BulletMazeEnv"
+
+
+def _register_ids() -> list[str]:
+    ids = {"BulletMaze-v0": {}}
+    ids.update({f"BulletMaze-{name}-v0": {"maze": name} for name in available_layouts()})
+    for env_id, kwargs in ids.items():
+        if env_id not in registry:
+            register(id=env_id, entry_point=ENTRY_POINT, max_episode_steps=MAX_EPISODE_STEPS,
+                     kwargs=kwargs)
+    return list(ids)
+
+
+ENV_IDS = _register_ids()
+"""The registered ids."""
+
+__all__ = [
+    "ENV_IDS",
+    "MAX_EPISODE_STEPS",
+    "METRES_PER_UNIT",
+    "Action",
+    "BulletMazeEnv",
+    "HolonomicRobot",
+    "HuskyRobot",
+    "MazeLayout",
+    "Obstacle",
+    "PhysicalLimit",
+    "PhysicsParams",
+    "Robot",
+    "TaskParams",
+    "Wall",
+    "available_layouts",
+    "load_layout",
+    "shortest_path",
+]

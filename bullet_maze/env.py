@@ -1,0 +1,444 @@
+"""``BulletMazeEnv``: the maze of section V.A as a Gymnasium environment in headless pybullet."""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+import os
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any, SupportsFloat
+
+import gymnasium as gym
+import numpy as np
+import pybullet as pb
+from gymnasium import spaces
+
+from bullet_maze.actions import DIRECTIONS
+from bullet_maze.geometry import clearance
+from bullet_maze.layout import DEFAULT_LAYOUT, MazeLayout, load_layout
+from bullet_maze.params import MODES, PhysicsParams, TaskParams
+from bullet_maze.planning import PhysicalLimit, shortest_path
+from bullet_maze.rendering import TopDownCamera
+from bullet_maze.robots import Robot, make_robot, wrap_angle
+from bullet_maze.world import CONTACT_TOLERANCE, World
+
+logger = logging.getLogger(__name__)
+
+_TASK = TaskParams()
+_PHYSICS = PhysicsParams()
+
+
+class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
+    """
+    ## Description
+
+    The robot maze of section V.A of Hwang, Li and Jiang, "Adaptive Exploration Strategies for
+    Reinforcement Learning", simulated in headless pybullet: a walled 300 x 300 arena with grey
+    cylindrical obstacles, a green start square and a red goal circle. The robot moves in four
+    directions by steps of 5.0 units with Gaussian noise; it must reach the goal.
+
+    Layouts are TOML files (`assets/mazes/`, see `bullet_maze.load_layout`); robots are
+    swappable (`"disc"`, `"husky"` or any URDF path).
+
+    ## Action Space
+
+    `Discrete(4)`, the `bullet_maze.Action` enum:
+
+    | Num | Action | Move (maze units)          |
+    |-----|--------|----------------------------|
+    | 0   | UP     | (0, +step_size) + noise    |
+    | 1   | DOWN   | (0, -step_size) + noise    |
+    | 2   | LEFT   | (-step_size, 0) + noise    |
+    | 3   | RIGHT  | (+step_size, 0) + noise    |
+
+    The noise is Gaussian, mean 0 and variance `noise_variance` (0.3) on each axis, drawn from
+    the env's seeded `np_random`.
+
+    ## Observation Space
+
+    `Box(float64)` of the robot's pose in maze units (x to the right, y up, origin at the arena's
+    lower-left corner):
+
+    | Num | Observation | Min  | Max          |
+    |-----|-------------|------|--------------|
+    | 0   | x           | 0    | arena width  |
+    | 1   | y           | 0    | arena height |
+    | 2   | heading     | -pi  | pi           |
+
+    The heading (radians from +x) is present only for robots that have one (the husky); the
+    disc and user URDFs observe `(x, y)`.
+
+    ## Rewards
+
+    Section V.A: `goal_reward` (+5) when the step ends with the robot's centre inside the goal
+    circle, `collision_reward` (-1) when the step touches a wall or an obstacle, `step_reward`
+    (-0.01) otherwise.
+
+    ## Starting State
+
+    The layout's start pose (the centre of the start square), or `options["start"]`.
+
+    ## Episode End
+
+    1. Termination: the robot's centre is within the goal radius of the goal centre.
+    2. Truncation: 5,000 steps (section V.A), set by the registration's `max_episode_steps`.
+
+    A collision never ends the episode.
+
+    ## Modes
+
+    * `"kinematic"` (default), the paper's exact step: the straight move from the current to the
+      proposed position is swept with the robot's footprint disc against the walls and obstacles
+      with pybullet distance queries; if it touches anything the robot stays put.
+    * `"dynamic"`: the move is a velocity command run through `substeps` physics steps with mass,
+      friction and contacts (the husky turns in place, then drives, through its wheels). A step
+      that touches a solid is undone if `revert_on_collision` (default, as the paper), otherwise
+      physics resolves the contact. The realised move is close to, not exactly, the commanded one.
+
+    ## Arguments
+
+    ```python
+    import gymnasium as gym
+    import bullet_maze  # registers the ids
+
+    env = gym.make("BulletMaze-v0", maze="paper", robot="disc", mode="kinematic")
+    ```
+
+    * `maze`: a layout name (`paper`, `paper_narrow`, `open`, `corridors`), a TOML path or a
+      `MazeLayout`.
+    * `robot`: `"disc"`, `"husky"` or a URDF path; `robot_radius` rescales it to that
+      footprint radius (default: the layout's robot radius; a user URDF keeps its own size).
+    * `mode`: `"kinematic"` or `"dynamic"`; `render_mode`: `None`, `"rgb_array"` (a top-down
+      TinyRenderer image, no display needed) or `"human"` (the pybullet GUI).
+    * `step_size`, `noise_variance`, `goal_reward`, `collision_reward`, `step_reward`: the task,
+      defaults from section V.A (`bullet_maze.params.TaskParams`).
+    * `time_step`, `substeps`, `revert_on_collision`, `max_turn_substeps`,
+      `max_drive_substeps`: dynamic mode (`bullet_maze.params.PhysicsParams`).
+    * `render_width`, `render_height`: image size in pixels.
+
+    `reset(seed=..., options={"start": (x, y) or (x, y, heading), "goal": (x, y)})` moves the
+    start and the goal for that episode (validated). `info` has `collision`,
+    `distance_to_goal` and `is_success`. `env.unwrapped.optimal_steps` is the least number of
+    steps that can reach the goal (see `bullet_maze.shortest_path`).
+
+    ## Version History
+
+    * v0: initial version.
+    """
+
+    metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 30}  # noqa: RUF012
+
+    def __init__(
+        self,
+        maze: str | Path | MazeLayout = DEFAULT_LAYOUT,
+        robot: str | Path = "disc",
+        mode: str = "kinematic",
+        render_mode: str | None = None,
+        *,
+        step_size: float = _TASK.step_size,
+        noise_variance: float = _TASK.noise_variance,
+        goal_reward: float = _TASK.goal_reward,
+        collision_reward: float = _TASK.collision_reward,
+        step_reward: float = _TASK.step_reward,
+        time_step: float = _PHYSICS.time_step,
+        substeps: int = _PHYSICS.substeps,
+        revert_on_collision: bool = _PHYSICS.revert_on_collision,
+        max_turn_substeps: int = _PHYSICS.max_turn_substeps,
+        max_drive_substeps: int = _PHYSICS.max_drive_substeps,
+        robot_radius: float | None = None,
+        render_width: int = 256,
+        render_height: int = 256,
+    ) -> None:
+        if mode not in MODES:
+            raise ValueError(f"mode must be one of {list(MODES)}, got {mode!r}")
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be None or one of "
+                             f"{self.metadata['render_modes']}, got {render_mode!r}")
+        if robot_radius is not None and not (
+                isinstance(robot_radius, int | float) and 0 < robot_radius < math.inf):
+            raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
+        self.task = TaskParams(step_size, noise_variance, goal_reward, collision_reward,
+                               step_reward)
+        self.physics = PhysicsParams(time_step, substeps, revert_on_collision,
+                                     max_turn_substeps, max_drive_substeps)
+        self.layout = load_layout(maze)
+        self.mode = mode
+        self.render_mode = render_mode
+        self._camera = TopDownCamera(self.layout.arena, render_width, render_height)
+        self._client = -1
+        self._client = self._connect(render_mode)
+        try:
+            self.robot: Robot = self._make_robot(robot, robot_radius)
+            if not math.isclose(self.robot.radius, self.layout.robot_radius, rel_tol=1e-6):
+                self.layout.validate(robot_radius=self.robot.radius)
+            self.world = World(self._client, self.layout, self.robot.radius)
+            pb.setGravity(0.0, 0.0, -9.81, physicsClientId=self._client)
+            pb.setTimeStep(self.physics.time_step, physicsClientId=self._client)
+            self.robot.configure(self.physics)
+            self.robot.place(*self.layout.start, self.layout.start_heading)
+            self._initial_state = pb.saveState(physicsClientId=self._client)
+        except BaseException:
+            self.close()
+            raise
+
+        width, height = self.layout.arena
+        low, high = [0.0, 0.0], [width, height]
+        if self.robot.has_heading:
+            low.append(-math.pi)
+            high.append(math.pi)
+        self.observation_space = spaces.Box(np.array(low), np.array(high), dtype=np.float64)
+        self.action_space = spaces.Discrete(len(DIRECTIONS))
+
+        self._moves = [(float(mx), float(my)) for mx, my in DIRECTIONS * self.task.step_size]
+        self._noise_std = self.task.noise_std
+        self._x, self._y = self.layout.start
+        self._heading = self.layout.start_heading
+        self._start = self.layout.start
+        self._goal = self.layout.goal
+        self._goal_radius = self.layout.goal_radius
+        self._body_in_sync = True
+        self._limits: dict[tuple[tuple[float, float], tuple[float, float]], PhysicalLimit] = {}
+
+    def _connect(self, render_mode: str | None) -> int:
+        if render_mode == "human":
+            if not _display_available():
+                # pybullet's GUI would end the whole process without a display.
+                logger.warning("render_mode='human' needs a display; none found (DISPLAY is "
+                               "unset), so the simulation runs headless and shows nothing")
+                return pb.connect(pb.DIRECT)
+            client = pb.connect(pb.GUI)
+            if client < 0:
+                raise RuntimeError("render_mode='human' could not open the pybullet GUI "
+                                   "(pybullet allows one GUI per process)")
+            return client
+        return pb.connect(pb.DIRECT)
+
+    def _make_robot(self, robot: str | Path, radius: float | None) -> Robot:
+        is_path = isinstance(robot, Path) or (isinstance(robot, str) and robot.endswith(".urdf"))
+        if not isinstance(robot, str | Path):
+            raise TypeError(f"robot must be 'disc', 'husky' or a URDF path, got "
+                            f"{type(robot).__name__}")
+        if radius is None and not is_path:
+            radius = self.layout.robot_radius
+        return make_robot(robot, self._client, radius)
+
+    # -- Gymnasium API -----------------------------------------------------------------------
+
+    def step(
+        self, action: int | np.integer
+    ) -> tuple[np.ndarray, SupportsFloat, bool, bool, dict[str, Any]]:
+        if self._client < 0:
+            raise RuntimeError("step() called on a closed BulletMazeEnv")
+        kind = type(action)
+        if (kind is not int and kind is not np.int64) or not 0 <= action < 4:
+            action = self._check_action(action)
+        mx, my = self._moves[action]
+        nx, ny = self.np_random.standard_normal(2).tolist()
+        dx = mx + nx * self._noise_std
+        dy = my + ny * self._noise_std
+        x0, y0 = self._x, self._y
+        if self.mode == "kinematic":
+            collided = self.world.sweep_collides(x0, y0, x0 + dx, y0 + dy)
+            if not collided:
+                self._x, self._y = x0 + dx, y0 + dy
+                if self.robot.has_heading:
+                    self._heading = math.atan2(dy, dx)
+                self._body_in_sync = False
+        else:
+            collided = self._dynamic_step(dx, dy)
+
+        distance = math.hypot(self._x - self._goal[0], self._y - self._goal[1])
+        success = distance <= self._goal_radius
+        if collided:
+            reward = self.task.collision_reward
+        elif success:
+            reward = self.task.goal_reward
+        else:
+            reward = self.task.step_reward
+        if self.render_mode == "human":
+            self._sync_body()
+        info = {"collision": collided, "distance_to_goal": distance, "is_success": success}
+        return self._observation(), reward, success, False, info
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        super().reset(seed=seed)
+        if self._client < 0:
+            raise RuntimeError("reset() called on a closed BulletMazeEnv")
+        start, heading, goal = self._parse_options(options)
+        pb.restoreState(self._initial_state, physicsClientId=self._client)
+        self.robot.place(start[0], start[1], heading)
+        self._x, self._y = start
+        self._heading = wrap_angle(heading) if self.robot.has_heading else heading
+        self._body_in_sync = True
+        if (start, goal) != (self._start, self._goal):
+            self.world.move_markers(start, goal)
+        self._start, self._goal = start, goal
+        distance = math.hypot(start[0] - goal[0], start[1] - goal[1])
+        info = {"collision": False, "distance_to_goal": distance, "is_success": False}
+        return self._observation(), info
+
+    def render(self) -> np.ndarray | None:
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; make the env with "
+                            "render_mode='rgb_array' to get images")
+            return None
+        if self._client < 0:
+            raise RuntimeError("render() called on a closed BulletMazeEnv")
+        self._sync_body()
+        if self.render_mode == "rgb_array":
+            return self._camera.render(self._client)
+        return None
+
+    def close(self) -> None:
+        """Disconnect the pybullet client; calling it again does nothing."""
+        client = getattr(self, "_client", -1)
+        if client >= 0:
+            self._client = -1
+            try:
+                pb.disconnect(physicsClientId=client)
+            except pb.error:  # already gone with its server
+                logger.debug("pybullet client %d was already disconnected", client)
+
+    def __del__(self) -> None:
+        self.close()
+
+    # -- The physical limit ----------------------------------------------------------------
+
+    @property
+    def physical_limit(self) -> PhysicalLimit:
+        """Shortest path and least steps from this episode's start to its goal (cached)."""
+        key = (self._start, self._goal)
+        if key not in self._limits:
+            layout = self.layout
+            if key != (layout.start, layout.goal):
+                layout = dataclasses.replace(layout, start=key[0], goal=key[1])
+            self._limits[key] = shortest_path(layout, self.robot.radius, self.task.step_size)
+        return self._limits[key]
+
+    @property
+    def optimal_steps(self) -> int:
+        """Least number of steps of ``step_size`` from start to goal: the L1 geodesic divided
+        by the step, rounded up (see ``bullet_maze.shortest_path``)."""
+        return self.physical_limit.steps
+
+    @property
+    def pose(self) -> tuple[float, float, float]:
+        """The robot's (x, y, heading) in maze units and radians."""
+        return self._x, self._y, self._heading
+
+    @property
+    def goal(self) -> tuple[float, float]:
+        """This episode's goal centre in maze units."""
+        return self._goal
+
+    @property
+    def client_id(self) -> int:
+        """The env's pybullet client (-1 once closed)."""
+        return self._client
+
+    # -- Internals -----------------------------------------------------------------------
+
+    def _dynamic_step(self, dx: float, dy: float) -> bool:
+        reach = math.hypot(dx, dy) + self.robot.reach_margin
+        near = not self.world.clear_within(self._x, self._y, reach)
+        client, body = self._client, self.robot.body_id
+        if near and self.physics.revert_on_collision:
+            saved = pb.getBasePositionAndOrientation(body, physicsClientId=client)
+            joints = self.robot.joint_states()
+        touched = self.robot.drive(dx, dy, self.physics, self.world if near else None)
+        if touched and self.physics.revert_on_collision:
+            pb.resetBasePositionAndOrientation(body, *saved, physicsClientId=client)
+            pb.resetBaseVelocity(body, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), physicsClientId=client)
+            self.robot.restore_joint_states(joints)
+            return True
+        x, y, heading = self.robot.pose()
+        width, height = self.layout.arena
+        self._x, self._y = min(max(x, 0.0), width), min(max(y, 0.0), height)
+        self._heading = heading
+        return touched
+
+    def _observation(self) -> np.ndarray:
+        if self.robot.has_heading:
+            return np.array((self._x, self._y, self._heading))
+        return np.array((self._x, self._y))
+
+    def _sync_body(self) -> None:
+        if not self._body_in_sync:
+            self.robot.place(self._x, self._y, self._heading)
+            self._body_in_sync = True
+
+    def _check_action(self, action: Any) -> int:
+        if isinstance(action, np.ndarray) and action.shape == ():
+            action = action.item()
+        if isinstance(action, bool) or not isinstance(action, int | np.integer):
+            raise TypeError(f"action must be an integer in [0, {len(DIRECTIONS)}) "
+                            f"(bullet_maze.Action), got {action!r}")
+        if not 0 <= action < len(DIRECTIONS):
+            raise ValueError(f"action {action} is not in [0, {len(DIRECTIONS)}) "
+                             f"(UP, DOWN, LEFT, RIGHT)")
+        return int(action)
+
+    def _parse_options(
+        self, options: dict[str, Any] | None
+    ) -> tuple[tuple[float, float], float, tuple[float, float]]:
+        layout = self.layout
+        start, heading, goal = layout.start, layout.start_heading, layout.goal
+        if not options:
+            return start, heading, goal
+        if not isinstance(options, dict):
+            raise TypeError(f"options must be a dict, got {type(options).__name__}")
+        unknown = set(options) - {"start", "goal"}
+        if unknown:
+            raise ValueError(f"unknown reset option(s) {sorted(unknown)}: allowed are "
+                             f"'start' and 'goal'")
+        if options.get("start") is not None:
+            values = _finite_numbers(options["start"], "options['start']", (2, 3))
+            start = (values[0], values[1])
+            if len(values) == 3:
+                heading = values[2]
+            self._check_inside(start, "options['start']")
+            gap = self.world.distance(start[0], start[1], 0.0)
+            if gap < CONTACT_TOLERANCE:
+                raise ValueError(f"options['start'] = {start}: a robot of radius "
+                                 f"{self.robot.radius:g} there overlaps a wall or an obstacle")
+        if options.get("goal") is not None:
+            values = _finite_numbers(options["goal"], "options['goal']", (2,))
+            goal = (values[0], values[1])
+            self._check_inside(goal, "options['goal']")
+            if float(clearance(layout, np.array(goal))) < 0.0:
+                raise ValueError(f"options['goal'] = {goal} lies inside a wall or an obstacle")
+        if math.dist(start, goal) <= layout.goal_radius:
+            raise ValueError(f"options: the start {start} lies inside the goal circle "
+                             f"(centre {goal}, radius {layout.goal_radius:g})")
+        return start, heading, goal
+
+    def _check_inside(self, point: tuple[float, float], name: str) -> None:
+        if not self.layout.contains(*point):
+            raise ValueError(f"{name} = {point} lies outside the arena [0, "
+                             f"{self.layout.arena[0]:g}] x [0, {self.layout.arena[1]:g}]")
+
+
+def _display_available() -> bool:
+    """Whether a GUI can open: always assumed off Linux, else an X11 or Wayland display."""
+    if not sys.platform.startswith("linux"):
+        return True
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def _finite_numbers(value: Any, name: str, lengths: Sequence[int]) -> list[float]:
+    try:
+        values = [float(v) for v in value]
+    except (TypeError, ValueError) as err:
+        raise ValueError(f"{name} must be a sequence of {' or '.join(map(str, lengths))} "
+                         f"numbers, got {value!r}") from err
+    if len(values) not in lengths:
+        raise ValueError(f"{name} must have {' or '.join(map(str, lengths))} numbers, "
+                         f"got {value!r}")
+    if not all(math.isfinite(v) for v in values):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return values

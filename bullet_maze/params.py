@@ -1,0 +1,90 @@
+"""Every number of the simulation in one place: the paper's task values and the physics settings.
+
+The task values are those of the paper's section V.A (Hwang, Li and Jiang, "Adaptive Exploration
+Strategies for Reinforcement Learning"): a step of 5.0 maze units, Gaussian noise of mean 0 and
+variance 0.3 on each axis, rewards +5 / -1 / -0.01 and episodes capped at 5,000 steps.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+METRES_PER_UNIT = 0.1
+"""World scale: one maze unit is 0.1 m in pybullet, so the paper's 300 x 300 arena is 30 m wide,
+a step of 5.0 units is 0.5 m and the default robot (radius 5 units) is a 1 m disc. At this scale
+the husky from ``pybullet_data`` is used near its real size and contacts stay well resolved at the
+default 240 Hz physics rate."""
+
+MAX_EPISODE_STEPS = 5000
+"""Section V.A: an episode ends at the goal or after 5,000 steps (set in the registration)."""
+
+WALL_HEIGHT = 10.0
+"""Height of walls and obstacles in maze units (1 m), taller than every robot."""
+
+BOUNDARY_THICKNESS = 10.0
+"""Thickness of the four arena walls in maze units, outside the arena."""
+
+MODES = ("kinematic", "dynamic")
+"""Actuation modes: ``kinematic`` is the paper's exact step, ``dynamic`` runs physics substeps."""
+
+
+@dataclass(frozen=True)
+class TaskParams:
+    """The maze task of section V.A; every field is a keyword argument of the env."""
+
+    step_size: float = 5.0
+    """Length of one action's nominal move in maze units (section V.A: 5.0)."""
+    noise_variance: float = 0.3
+    """Variance of the zero-mean Gaussian noise added to each axis of a move (section V.A: 0.3)."""
+    goal_reward: float = 5.0
+    """Reward for reaching the goal, which terminates the episode (section V.A: +5)."""
+    collision_reward: float = -1.0
+    """Reward for hitting a wall or an obstacle; the robot stays put (section V.A: -1)."""
+    step_reward: float = -0.01
+    """Reward of every other step (section V.A: -0.01)."""
+
+    def __post_init__(self) -> None:
+        for name in ("step_size", "noise_variance", "goal_reward", "collision_reward",
+                     "step_reward"):
+            value = getattr(self, name)
+            if not isinstance(value, int | float) or not math.isfinite(value):
+                raise ValueError(f"{name} must be a finite number, got {value!r}")
+        if self.step_size <= 0:
+            raise ValueError(f"step_size must be positive, got {self.step_size}")
+        if self.noise_variance < 0:
+            raise ValueError(f"noise_variance must be >= 0, got {self.noise_variance}")
+
+    @property
+    def noise_std(self) -> float:
+        """Standard deviation of the per-axis noise, the square root of its variance."""
+        return math.sqrt(self.noise_variance)
+
+
+@dataclass(frozen=True)
+class PhysicsParams:
+    """Settings of ``mode="dynamic"``; every field is a keyword argument of the env."""
+
+    time_step: float = 1.0 / 240.0
+    """pybullet's fixed time step in seconds (its default, 240 Hz)."""
+    substeps: int = 8
+    """Physics steps per env step for holonomic robots: a step lasts ``substeps * time_step``."""
+    revert_on_collision: bool = True
+    """A step that touches a wall or an obstacle is undone, as in the paper; if False, physics
+    resolves the contact and the robot stays where it came to rest (still rewarded -1)."""
+    max_turn_substeps: int = 240
+    """Upper bound on the physics steps a wheeled robot may spend turning towards a step."""
+    max_drive_substeps: int = 240
+    """Upper bound on the physics steps a wheeled robot may spend driving one step."""
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.time_step, int | float) and 0 < self.time_step <= 0.1):
+            raise ValueError(f"time_step must be in (0, 0.1] seconds, got {self.time_step!r}")
+        for name in ("substeps", "max_turn_substeps", "max_drive_substeps"):
+            value = getattr(self, name)
+            if not isinstance(value, int) or isinstance(value, bool) or value < 1:
+                raise ValueError(f"{name} must be a positive integer, got {value!r}")
+        if not isinstance(self.revert_on_collision, bool):
+            raise TypeError(
+                f"revert_on_collision must be a bool, got {self.revert_on_collision!r}"
+            )

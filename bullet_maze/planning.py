@@ -1,0 +1,256 @@
+"""The physical limit of a layout: the shortest collision-free path and the least number of steps.
+
+For a robot disc of a given radius, ``shortest_path`` gives
+
+* ``length``: the Euclidean length of the shortest collision-free path from the start to the goal
+  circle (Dijkstra on an 8-connected grid with ``scipy.sparse.csgraph``, then pulled taut by
+  line-of-sight shortcuts, so it is exact to within about one grid cell);
+* ``l1_length``: the same with only axis-parallel moves (the L1 geodesic on a 4-connected grid);
+* ``steps``: the least number of 4-direction steps of ``step_size`` that can cover the L1
+  geodesic, ``ceil(l1_length / step_size)``: no sequence of steps of that length reaches the goal
+  in fewer;
+* ``lattice_steps``: the least number of noise-free steps from the exact start (a breadth-first
+  search over the lattice of points start + step_size * (i, j)), with the actions that do it.
+  It can exceed ``steps`` when the lattice does not line up with a gap.
+
+Section V.A's steps carry noise, so a learner can only approach these on average.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import TYPE_CHECKING
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import breadth_first_order, connected_components, dijkstra
+
+from bullet_maze.actions import DIRECTIONS
+from bullet_maze.geometry import clearance, segment_clearance
+
+if TYPE_CHECKING:
+    from bullet_maze.layout import MazeLayout
+
+CLEARANCE_TOLERANCE = 0.01
+"""Extra clearance (maze units) that planned paths keep from every surface, above the
+simulation's contact tolerance (``world.CONTACT_TOLERANCE``), so that the simulation accepts
+them."""
+
+GRID_RESOLUTION = 0.5
+"""Cell size in maze units of the planning grid."""
+
+
+@dataclass(frozen=True)
+class PhysicalLimit:
+    """The best any policy can do in a layout, for one robot radius and step size."""
+
+    length: float
+    """Euclidean length of the shortest collision-free path from start to goal circle."""
+    l1_length: float
+    """Length of the shortest collision-free path made of axis-parallel moves."""
+    steps: int
+    """Least number of 4-direction steps of ``step_size`` covering the L1 geodesic."""
+    lattice_steps: int | None
+    """Least number of noise-free steps from the exact start; None if the lattice has no path."""
+    actions: tuple[int, ...]
+    """One sequence of ``lattice_steps`` actions that reaches the goal without noise."""
+    waypoints: np.ndarray
+    """Corners of the shortest Euclidean path, shape ``(n, 2)``."""
+    robot_radius: float
+    step_size: float
+
+
+def goal_reachable(layout: MazeLayout, robot_radius: float) -> bool:
+    """Whether a disc of ``robot_radius`` can move from the start into the goal circle."""
+    grid = _Grid(layout, robot_radius, min(2 * GRID_RESOLUTION, layout.goal_radius / 2.0))
+    edges = grid.edges(diagonal=False)
+    _, labels = connected_components(edges, directed=False)
+    start = grid.start_node()
+    goals = grid.goal_nodes()
+    return start is not None and bool(np.any(labels[goals] == labels[start]))
+
+
+def shortest_path(
+    layout: MazeLayout, robot_radius: float | None = None, step_size: float = 5.0
+) -> PhysicalLimit:
+    """Section V.A's physical limit for a layout (see the module docstring); cached."""
+    radius = layout.robot_radius if robot_radius is None else float(robot_radius)
+    return _shortest_path(layout, radius, float(step_size))
+
+
+@lru_cache(maxsize=64)
+def _shortest_path(layout: MazeLayout, radius: float, step_size: float) -> PhysicalLimit:
+    if radius <= 0 or step_size <= 0:
+        raise ValueError(f"robot_radius and step_size must be positive, got {radius}, "
+                         f"{step_size}")
+    grid = _Grid(layout, radius, _resolution(layout))
+    start = grid.start_node()
+    goals = grid.goal_nodes()
+    if start is None or goals.size == 0:
+        raise ValueError(f"{layout.source}: no free start or goal for radius {radius}")
+    dist, pred = dijkstra(grid.edges(diagonal=True), indices=start, return_predecessors=True)
+    best = goals[np.argmin(dist[goals])]
+    if not np.isfinite(dist[best]):
+        raise ValueError(f"{layout.source}: goal unreachable for radius {radius}")
+    nodes = [int(best)]
+    while nodes[-1] != start:
+        nodes.append(int(pred[nodes[-1]]))
+    points = grid.points(np.array(nodes[::-1]))
+    points[0] = layout.start
+    waypoints = _pull_taut(layout, points, radius + CLEARANCE_TOLERANCE)
+    length = _length_to_goal(waypoints, np.array(layout.goal), layout.goal_radius)
+
+    l1 = dijkstra(grid.edges(diagonal=False), indices=start)
+    l1_length = float(np.min(l1[goals]))
+    l1_length += float(np.abs(grid.points(np.array([start]))[0] - layout.start).sum())
+
+    lattice, actions = _lattice_steps(layout, radius, step_size)
+    steps = math.ceil(l1_length / step_size - 1e-9)
+    return PhysicalLimit(length=length, l1_length=l1_length, steps=steps, lattice_steps=lattice,
+                         actions=actions, waypoints=waypoints, robot_radius=radius,
+                         step_size=step_size)
+
+
+def _resolution(layout: MazeLayout) -> float:
+    return min(GRID_RESOLUTION, layout.goal_radius / 2.0)
+
+
+class _Grid:
+    """Free cells of a square grid over the arena for a disc of a given radius."""
+
+    def __init__(self, layout: MazeLayout, radius: float, resolution: float) -> None:
+        self.layout = layout
+        self.h = resolution
+        self.nx = math.floor(layout.arena[0] / resolution) + 1
+        self.ny = math.floor(layout.arena[1] / resolution) + 1
+        xs = np.arange(self.nx) * resolution
+        ys = np.arange(self.ny) * resolution
+        self.xy = np.stack(np.meshgrid(xs, ys, indexing="ij"), axis=-1)
+        self.limit = radius + CLEARANCE_TOLERANCE
+        self.free = clearance(layout, self.xy) >= self.limit
+
+    def points(self, nodes: np.ndarray) -> np.ndarray:
+        i, j = np.divmod(nodes, self.ny)
+        return np.stack([i * self.h, j * self.h], axis=-1).astype(float)
+
+    def edges(self, diagonal: bool) -> coo_matrix:
+        offsets = [(1, 0), (0, 1)] + ([(1, 1), (1, -1)] if diagonal else [])
+        index = np.arange(self.nx * self.ny).reshape(self.nx, self.ny)
+        rows, cols, weights = [], [], []
+        for di, dj in offsets:
+            a = (slice(0, self.nx - di), slice(max(0, -dj), self.ny - max(0, dj)))
+            b = (slice(di, self.nx), slice(max(0, dj), self.ny - max(0, -dj) or None))
+            # Neighbours are closer than the robot's diameter, so two free nodes bound a free edge.
+            ok = self.free[a] & self.free[b]
+            rows.append(index[a][ok])
+            cols.append(index[b][ok])
+            weights.append(np.full(int(ok.sum()), self.h * math.hypot(di, dj)))
+        n = self.nx * self.ny
+        r, c, w = np.concatenate(rows), np.concatenate(cols), np.concatenate(weights)
+        return coo_matrix((np.r_[w, w], (np.r_[r, c], np.r_[c, r])), shape=(n, n)).tocsr()
+
+    def start_node(self) -> int | None:
+        sx, sy = self.layout.start
+        best: tuple[float, int] | None = None
+        for i in (math.floor(sx / self.h), math.ceil(sx / self.h)):
+            for j in (math.floor(sy / self.h), math.ceil(sy / self.h)):
+                if 0 <= i < self.nx and 0 <= j < self.ny and self.free[i, j]:
+                    d = math.hypot(i * self.h - sx, j * self.h - sy)
+                    if best is None or d < best[0]:
+                        best = (d, i * self.ny + j)
+        return None if best is None else best[1]
+
+    def goal_nodes(self) -> np.ndarray:
+        gx, gy = self.layout.goal
+        inside = np.hypot(self.xy[..., 0] - gx, self.xy[..., 1] - gy) <= self.layout.goal_radius
+        return np.flatnonzero((inside & self.free).ravel())
+
+
+def _pull_taut(layout: MazeLayout, points: np.ndarray, limit: float) -> np.ndarray:
+    """Replace runs of grid points by straight segments wherever the robot fits along them."""
+    spacing, chunk = 0.25, 64
+    kept = [0]
+    while kept[-1] < len(points) - 1:
+        anchor = kept[-1]
+        step = len(points) - 1 - anchor
+        for first in range(anchor + 1, len(points), chunk):
+            ends = points[first:first + chunk]
+            starts = np.broadcast_to(points[anchor], ends.shape)
+            visible = segment_clearance(layout, starts, ends, spacing) >= limit - spacing / 2
+            blocked = np.flatnonzero(~visible)
+            if blocked.size:
+                step = max(1, first + int(blocked[0]) - 1 - anchor)
+                break
+        kept.append(anchor + step)
+    return points[kept]
+
+
+def _length_to_goal(points: np.ndarray, goal: np.ndarray, radius: float) -> float:
+    """Length of a polyline up to where it first enters the goal circle."""
+    total = 0.0
+    for a, b in itertools.pairwise(points):
+        seg = b - a
+        seg_len = float(np.hypot(*seg))
+        if np.hypot(*(b - goal)) > radius:
+            total += seg_len
+            continue
+        # Solve |a + t seg - goal| = radius for the entering t in [0, 1].
+        f = a - goal
+        qa, qb, qc = seg @ seg, 2.0 * (f @ seg), f @ f - radius**2
+        disc = max(qb * qb - 4 * qa * qc, 0.0)
+        t = (-qb - math.sqrt(disc)) / (2 * qa) if qa > 0 else 0.0
+        return total + max(t, 0.0) * seg_len
+    return total
+
+
+def _lattice_steps(
+    layout: MazeLayout, radius: float, step_size: float
+) -> tuple[int | None, tuple[int, ...]]:
+    """Breadth-first search over the lattice of noise-free step positions from the start."""
+    sx, sy = layout.start
+    w, h = layout.arena
+    i_lo, i_hi = -math.floor(sx / step_size), math.floor((w - sx) / step_size)
+    j_lo, j_hi = -math.floor(sy / step_size), math.floor((h - sy) / step_size)
+    ii, jj = np.meshgrid(np.arange(i_lo, i_hi + 1), np.arange(j_lo, j_hi + 1), indexing="ij")
+    pts = np.stack([sx + ii * step_size, sy + jj * step_size], axis=-1)
+    nx, ny = ii.shape
+    index = np.arange(nx * ny).reshape(nx, ny)
+    limit = radius + CLEARANCE_TOLERANCE
+    spacing = 0.25
+    free = clearance(layout, pts) >= limit
+    rows, cols = [], []
+    for di, dj in ((1, 0), (0, 1)):
+        a = (slice(0, nx - di), slice(0, ny - dj))
+        b = (slice(di, nx), slice(dj, ny))
+        ok = free[a] & free[b]
+        seg_ok = segment_clearance(layout, pts[a][ok], pts[b][ok], spacing) >= (
+            limit + spacing / 2)
+        rows.append(index[a][ok][seg_ok])
+        cols.append(index[b][ok][seg_ok])
+    r, c = np.concatenate(rows), np.concatenate(cols)
+    n = nx * ny
+    graph = coo_matrix((np.ones(2 * r.size), (np.r_[r, c], np.r_[c, r])), shape=(n, n)).tocsr()
+    start = int(index[-i_lo, -j_lo])
+    order, pred = breadth_first_order(graph, start, directed=False, return_predecessors=True)
+    dist = np.full(n, np.inf)
+    for node in order:  # breadth-first order: a node's predecessor is already measured
+        dist[node] = 0.0 if node == start else dist[pred[node]] + 1.0
+    in_goal = (np.hypot(pts[..., 0] - layout.goal[0], pts[..., 1] - layout.goal[1])
+               <= layout.goal_radius) & free
+    goals = np.flatnonzero(in_goal.ravel())
+    if goals.size == 0 or not np.isfinite(dist[goals]).any():
+        return None, ()
+    best = int(goals[np.argmin(dist[goals])])
+    nodes = [best]
+    while nodes[-1] != start:
+        nodes.append(int(pred[nodes[-1]]))
+    nodes.reverse()
+    actions = []
+    for a, b in itertools.pairwise(nodes):
+        (ai, aj), (bi, bj) = divmod(a, ny), divmod(b, ny)
+        move = np.array([bi - ai, bj - aj], dtype=float)
+        actions.append(int(np.flatnonzero((move == DIRECTIONS).all(axis=1))[0]))
+    return len(actions), tuple(actions)

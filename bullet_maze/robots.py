@@ -1,0 +1,361 @@
+"""Robots the maze can drive: the ``Robot`` interface and its implementations.
+
+* ``HolonomicRobot``: any URDF moved as a rigid body in the plane with no heading, like the
+  paper's point robot (section V.A); the default disc (``assets/robots/disc.urdf``) is one.
+* ``HuskyRobot``: Clearpath's skid-steered husky from ``pybullet_data``. It reaches the same
+  four-direction intent by turning in place towards the step, then driving it, through its
+  wheel joints; its observation adds the heading.
+
+A robot's size in the maze is the radius of its footprint: the largest horizontal distance from
+its base to its collision geometry, measured with pybullet rays when it is loaded. Kinematic
+collision checks sweep a disc of that radius.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import math
+import os
+import sys
+from abc import ABC, abstractmethod
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+import pybullet as pb
+import pybullet_data
+
+from assets import ROBOT_DIR
+from bullet_maze.params import METRES_PER_UNIT, PhysicsParams
+from bullet_maze.world import World
+
+ROBOT_NAMES = ("disc", "husky")
+"""Built-in robots; any other ``robot=`` value must be a path to a URDF file."""
+
+DISC_URDF = ROBOT_DIR / "disc.urdf"
+HUSKY_URDF = Path(pybullet_data.getDataPath()) / "husky" / "husky.urdf"
+
+_RAY_ANGLES = 120
+_RAY_HEIGHTS = 8
+
+
+def _yaw(orientation: tuple[float, float, float, float]) -> float:
+    qx, qy, qz, qw = orientation
+    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+
+
+def _quaternion(yaw: float) -> tuple[float, float, float, float]:
+    return (0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
+
+
+def wrap_angle(angle: float) -> float:
+    """The angle in [-pi, pi)."""
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+@contextmanager
+def _native_output_silenced() -> Iterator[None]:
+    """Silence what C code writes to the process's stdout and stderr (pybullet's URDF importer
+    warns there about every link without inertial data, once per load)."""
+    libc = ctypes.CDLL(None)
+    try:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        saved = [os.dup(1), os.dup(2)]
+    except (AttributeError, OSError, ValueError):  # no real file descriptors: leave them be
+        yield
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        os.dup2(devnull, 2)
+        yield
+    finally:
+        libc.fflush(None)
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        for fd in (*saved, devnull):
+            os.close(fd)
+
+
+def load_urdf(client: int, path: Path, scale: float = 1.0) -> int:
+    """Load a URDF at the origin; a clear error naming the path instead of a pybullet one."""
+    if not path.is_file():
+        raise FileNotFoundError(f"robot URDF not found: {path}")
+    try:
+        with _native_output_silenced():
+            return pb.loadURDF(str(path), [0.0, 0.0, 0.0], globalScaling=scale,
+                               physicsClientId=client)
+    except pb.error as err:
+        raise ValueError(f"robot URDF {path} could not be loaded by pybullet: {err}") from err
+
+
+def footprint(client: int, body: int) -> tuple[float, float]:
+    """(radius, lowest z) of a body at rest at the origin, in metres.
+
+    The radius is the largest horizontal distance from the base to the body's collision geometry,
+    found by casting rays inwards at every angle and height; call it before anything else stands
+    near the body.
+    """
+    lows, highs = [], []
+    for link in range(-1, pb.getNumJoints(body, physicsClientId=client)):
+        low, high = pb.getAABB(body, link, physicsClientId=client)
+        lows.append(low)
+        highs.append(high)
+    low, high = np.min(lows, axis=0), np.max(highs, axis=0)
+    base = np.array(pb.getBasePositionAndOrientation(body, physicsClientId=client)[0])
+    reach = 2.0 * float(np.max(np.abs(np.r_[low[:2], high[:2]] - np.r_[base[:2], base[:2]])))
+    angles = np.linspace(0.0, 2.0 * math.pi, _RAY_ANGLES, endpoint=False)
+    heights = np.linspace(low[2], high[2], _RAY_HEIGHTS + 2)[1:-1]
+    a, z = np.meshgrid(angles, heights)
+    starts = np.stack([base[0] + reach * np.cos(a), base[1] + reach * np.sin(a), z], -1)
+    ends = np.stack([np.full_like(a, base[0]), np.full_like(a, base[1]), z], -1)
+    hits = pb.rayTestBatch(starts.reshape(-1, 3).tolist(), ends.reshape(-1, 3).tolist(),
+                           physicsClientId=client)
+    radii = [math.hypot(hit[3][0] - base[0], hit[3][1] - base[1])
+             for hit in hits if hit[0] == body]
+    if not radii:
+        raise ValueError("robot has no collision geometry to measure its footprint")
+    return max(radii), float(low[2])
+
+
+class Robot(ABC):
+    """A body the maze env drives; positions in maze units, heading in radians from +x."""
+
+    name: str
+    has_heading: bool
+    radius: float
+    """Footprint radius in maze units."""
+    body_id: int
+    reach_margin: float
+    """Maze units a dynamic step may carry the robot beyond its commanded length (overshoot);
+    within the step's length plus this margin of a solid, contacts are checked every substep."""
+
+    def __init__(self, client: int) -> None:
+        self.client = client
+        self.scale = 1.0
+        """globalScaling applied to the URDF."""
+        self._rest_z = 0.0
+
+    def _load_scaled(self, path: Path, radius: float | None) -> None:
+        """Load the URDF, rescaled so that its footprint has ``radius`` (maze units) if given."""
+        body = load_urdf(self.client, path)
+        try:
+            natural, low = footprint(self.client, body)
+        except ValueError as err:
+            raise ValueError(f"robot URDF {path}: {err}") from err
+        scale = 1.0 if radius is None else radius * METRES_PER_UNIT / natural
+        if scale != 1.0:
+            pb.removeBody(body, physicsClientId=self.client)
+            body = load_urdf(self.client, path, scale)
+        self.body_id = body
+        self.scale = scale
+        self.radius = natural * scale / METRES_PER_UNIT
+        base_z = pb.getBasePositionAndOrientation(body, physicsClientId=self.client)[0][2]
+        self._rest_z = base_z - low * scale
+
+    def place(self, x: float, y: float, heading: float) -> None:
+        """Teleport the robot, at rest, to (x, y) facing ``heading``."""
+        s = METRES_PER_UNIT
+        pb.resetBasePositionAndOrientation(self.body_id, (x * s, y * s, self._rest_z),
+                                           _quaternion(heading), physicsClientId=self.client)
+        pb.resetBaseVelocity(self.body_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
+                             physicsClientId=self.client)
+
+    def pose(self) -> tuple[float, float, float]:
+        """(x, y, heading) of the robot's base in maze units and radians."""
+        position, orientation = pb.getBasePositionAndOrientation(self.body_id,
+                                                                 physicsClientId=self.client)
+        s = METRES_PER_UNIT
+        return position[0] / s, position[1] / s, _yaw(orientation)
+
+    def joint_states(self) -> tuple[float, ...]:
+        """Joint positions, to undo a dynamic step with ``restore_joint_states``."""
+        count = pb.getNumJoints(self.body_id, physicsClientId=self.client)
+        if count == 0:
+            return ()
+        states = pb.getJointStates(self.body_id, range(count), physicsClientId=self.client)
+        return tuple(state[0] for state in states)
+
+    def restore_joint_states(self, positions: tuple[float, ...]) -> None:
+        """Put the joints back at these positions, at rest."""
+        for joint, position in enumerate(positions):
+            pb.resetJointState(self.body_id, joint, position, 0.0, physicsClientId=self.client)
+
+    @abstractmethod
+    def configure(self, physics: PhysicsParams) -> None:
+        """Set the dynamics (damping, friction) used by ``drive``."""
+
+    @abstractmethod
+    def drive(self, dx: float, dy: float, physics: PhysicsParams, watch: World | None) -> bool:
+        """Dynamic mode: move by (dx, dy) maze units through physics substeps.
+
+        If ``watch`` is given, contacts with its walls and obstacles are checked after every
+        substep (pybullet reports those found at the start of the substep, so the first, which
+        sees the pose before the move, is skipped and the final pose is checked explicitly);
+        returns whether any occurred.
+        """
+
+
+class HolonomicRobot(Robot):
+    """A URDF moved in the plane as a rigid body without heading (the disc, a user's URDF).
+
+    Dynamic mode commands the base velocity that covers the step in ``substeps * time_step``
+    seconds at the start of the step; then mass, ground friction and contacts act freely through
+    the substeps (linear and angular damping are switched off so that only they act).
+    """
+
+    has_heading = False
+    reach_margin = 0.5  # friction only shortens the commanded move; contacts need proximity
+
+    def __init__(self, client: int, path: Path, radius: float | None = None,
+                 name: str | None = None) -> None:
+        super().__init__(client)
+        self.name = name or path.stem
+        self._load_scaled(path, radius)
+
+    def configure(self, physics: PhysicsParams) -> None:
+        pb.changeDynamics(self.body_id, -1, linearDamping=0.0, angularDamping=0.0,
+                          physicsClientId=self.client)
+
+    def drive(self, dx: float, dy: float, physics: PhysicsParams, watch: World | None) -> bool:
+        rate = METRES_PER_UNIT / (physics.substeps * physics.time_step)
+        pb.resetBaseVelocity(self.body_id, (dx * rate, dy * rate, 0.0), (0.0, 0.0, 0.0),
+                             physicsClientId=self.client)
+        touched = False
+        client = self.client
+        if watch is None:
+            for _ in range(physics.substeps):
+                pb.stepSimulation(physicsClientId=client)
+            return False
+        pb.stepSimulation(physicsClientId=client)
+        for _ in range(physics.substeps - 1):
+            pb.stepSimulation(physicsClientId=client)
+            touched = touched or watch.touching(self.body_id)
+        return watch.touching_now(self.body_id) or touched
+
+
+class HuskyRobot(Robot):
+    """Clearpath's husky from ``pybullet_data``, rescaled so that its footprint has the given
+    radius (by default the layout's robot radius, so that it fits the same gaps as the disc).
+
+    Dynamic mode: turn in place towards the step's direction, then drive its length, both by
+    velocity commands to the four wheel joints (skid steering), with proportional control on
+    the heading and the remaining distance. Kinematic mode: the turn and the move are teleports.
+    """
+
+    has_heading = True
+    name = "husky"
+    reach_margin = 4.0  # measured overshoot of a step is below 3 units
+    WHEELS = ("front_left_wheel", "rear_left_wheel", "front_right_wheel", "rear_right_wheel")
+    WHEEL_RADIUS = 0.17775
+    """Metres at the URDF's own scale (``husky.urdf``)."""
+    TRACK = 0.5708
+    """Distance between left and right wheels in metres at the URDF's own scale."""
+    DUMMY_MASS = 0.01
+    """kg given to the URDF's links that have no inertial data."""
+    MAX_WHEEL_SPEED = 40.0
+    """rad/s of a wheel."""
+    WHEEL_FORCE = 200.0
+    """Newton-metres of each wheel motor."""
+    MAX_SPEED = 2.0
+    """m/s: forward speed command limit."""
+    MAX_SPIN = 8.0
+    """rad/s: turn rate command limit."""
+    TURN_GAIN = 15.0
+    """1/s: turn rate command per radian of heading error."""
+    DRIVE_GAIN = 8.0
+    """1/s: forward speed command per metre of remaining distance."""
+    HEADING_TOLERANCE = 0.05
+    """Radians: the turn ends when the heading is this close to the step's direction..."""
+    SETTLED_SPIN = 0.3
+    """...and the yaw rate (rad/s) is below this."""
+    DISTANCE_TOLERANCE = 0.1
+    """Maze units: the drive ends when this close to the step's length..."""
+    SETTLED_SPEED = 0.1
+    """...and the speed (m/s) is below this."""
+
+    def __init__(self, client: int, radius: float | None = None) -> None:
+        super().__init__(client)
+        self._load_scaled(HUSKY_URDF, radius)
+        names = {pb.getJointInfo(self.body_id, j, physicsClientId=client)[1].decode(): j
+                 for j in range(pb.getNumJoints(self.body_id, physicsClientId=client))}
+        self._wheels = [names[wheel] for wheel in self.WHEELS]
+        # husky.urdf gives no inertial data for its frame-only links (footprint, IMU, plates,
+        # bumpers); pybullet then assumes 1 kg and 1 kg m^2 each, which makes the robot turn
+        # several times slower than its real inertia allows. Make them near massless.
+        for link in [-1, *names.values()]:
+            mass, _, inertia = pb.getDynamicsInfo(self.body_id, link, physicsClientId=client)[:3]
+            if mass == 1.0 and len(set(inertia)) == 1:
+                pb.changeDynamics(self.body_id, link, mass=self.DUMMY_MASS,
+                                  localInertiaDiagonal=[self.DUMMY_MASS * 1e-3] * 3,
+                                  physicsClientId=client)
+
+    def configure(self, physics: PhysicsParams) -> None:
+        self._command(0.0, 0.0)
+
+    def _command(self, forward: float, turn: float) -> None:
+        """Wheel speeds for a forward speed (m/s) and a turn rate (rad/s)."""
+        r = self.WHEEL_RADIUS * self.scale
+        half_track = self.TRACK * self.scale / 2.0
+        left = np.clip((forward - turn * half_track) / r, -self.MAX_WHEEL_SPEED,
+                       self.MAX_WHEEL_SPEED)
+        right = np.clip((forward + turn * half_track) / r, -self.MAX_WHEEL_SPEED,
+                        self.MAX_WHEEL_SPEED)
+        pb.setJointMotorControlArray(
+            self.body_id, self._wheels, pb.VELOCITY_CONTROL,
+            targetVelocities=[left, left, right, right], forces=[self.WHEEL_FORCE] * 4,
+            physicsClientId=self.client)
+
+    def drive(self, dx: float, dy: float, physics: PhysicsParams, watch: World | None) -> bool:
+        target = math.atan2(dy, dx)
+        distance = math.hypot(dx, dy)
+        ux, uy = math.cos(target), math.sin(target)
+        x0, y0, _ = self.pose()
+        substep = 0
+        touched = False
+        for phase, limit in (("turn", physics.max_turn_substeps),
+                             ("drive", physics.max_drive_substeps)):
+            for _ in range(limit):
+                x, y, heading = self.pose()
+                error = wrap_angle(target - heading)
+                speed, spin = self._speeds()
+                if phase == "turn":
+                    if abs(error) < self.HEADING_TOLERANCE and abs(spin) < self.SETTLED_SPIN:
+                        break
+                    forward = 0.0
+                else:
+                    remaining = distance - ((x - x0) * ux + (y - y0) * uy)
+                    if remaining < self.DISTANCE_TOLERANCE and speed < self.SETTLED_SPEED:
+                        break
+                    forward = float(np.clip(self.DRIVE_GAIN * remaining * METRES_PER_UNIT,
+                                            -self.MAX_SPEED, self.MAX_SPEED))
+                turn = float(np.clip(self.TURN_GAIN * error, -self.MAX_SPIN, self.MAX_SPIN))
+                self._command(forward, turn)
+                pb.stepSimulation(physicsClientId=self.client)
+                substep += 1
+                if watch is not None and substep > 1 and not touched:
+                    touched = watch.touching(self.body_id)
+        self._command(0.0, 0.0)
+        return touched or (watch is not None and watch.touching_now(self.body_id))
+
+    def _speeds(self) -> tuple[float, float]:
+        """(horizontal speed in m/s, yaw rate in rad/s) of the base."""
+        linear, angular = pb.getBaseVelocity(self.body_id, physicsClientId=self.client)
+        return math.hypot(linear[0], linear[1]), angular[2]
+
+def make_robot(spec: str | Path, client: int, radius: float | None) -> Robot:
+    """``"disc"``, ``"husky"`` or a path to a URDF file (moved as a holonomic body).
+
+    ``radius`` rescales the robot to that footprint radius in maze units; None keeps a user
+    URDF's own size.
+    """
+    if isinstance(spec, Path) or (isinstance(spec, str) and spec.endswith(".urdf")):
+        return HolonomicRobot(client, Path(spec), radius)
+    if spec == "disc":
+        return HolonomicRobot(client, DISC_URDF, radius, name="disc")
+    if spec == "husky":
+        return HuskyRobot(client, radius)
+    raise ValueError(f"unknown robot {spec!r}: choose one of {list(ROBOT_NAMES)} or give a path "
+                     f"to a .urdf file")

@@ -1,0 +1,213 @@
+"""The maze built as pybullet bodies in one client, and the collision queries made on it.
+
+Units: pybullet works in metres at ``params.METRES_PER_UNIT`` (0.1 m per maze unit); maze x and
+y map to world x and y, z is up. The world holds
+
+* the ground, a plane (collision) under a light floor (visual);
+* one static body for all solids: the four arena walls, the layout's walls (boxes) and obstacles
+  (grey cylinders, section V.A), merged into a single compound shape so that one query covers
+  them all;
+* visual-only markers: the green start square and the red goal circle (section V.A);
+* a collision probe: an invisible cylinder of the robot's footprint radius, moved along a step
+  to test it (``sweep_collides``). It is filtered out of the physics simulation.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pybullet as pb
+
+from bullet_maze.layout import MazeLayout
+from bullet_maze.params import BOUNDARY_THICKNESS, METRES_PER_UNIT, WALL_HEIGHT
+
+CONTACT_TOLERANCE = 1e-3
+"""Maze units: a robot closer than this to a solid surface touches it (a collision)."""
+
+GROUND_FRICTION = 1.0
+"""Lateral friction coefficient of the floor (rubber on concrete); pybullet multiplies it with
+each robot link's own coefficient."""
+
+SAFE_REACH = 25.0
+"""Maze units: each sweep's first distance query looks this far, and the free disc it certifies
+(the "safe ball") lets the following moves that stay inside it skip pybullet altogether."""
+
+MAX_SWEEP_QUERIES = 256
+"""Bound on the distance queries of one sweep; a sweep that needs more counts as a collision."""
+
+COLOURS = {
+    "ground": (0.93, 0.93, 0.90, 1.0),
+    "wall": (0.30, 0.30, 0.32, 1.0),
+    "obstacle": (0.55, 0.55, 0.58, 1.0),
+    "start": (0.15, 0.70, 0.25, 1.0),
+    "goal": (0.85, 0.12, 0.12, 1.0),
+}
+"""RGBA colours of the maze, after section V.A: green start, red goal, grey obstacles."""
+
+_IDENTITY = (0.0, 0.0, 0.0, 1.0)
+
+
+class World:
+    """A layout's bodies in the pybullet client ``client``; see the module docstring."""
+
+    def __init__(self, client: int, layout: MazeLayout, robot_radius: float) -> None:
+        self.client = client
+        self.layout = layout
+        self.robot_radius = robot_radius
+        self.solid_id = self._build_solids()
+        self.ground_id = self._build_ground()
+        self._build_markers()
+        self.probe_id = self._build_probe(robot_radius)
+        self._probe_xy = (math.nan, math.nan)
+        self._safe = (math.nan, math.nan, -math.inf)  # centre x, y and radius of the safe ball
+
+    def _build_ground(self) -> int:
+        s, c = METRES_PER_UNIT, self.client
+        w, h = self.layout.arena
+        margin = BOUNDARY_THICKNESS
+        shape = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=c)
+        visual = pb.createVisualShape(
+            pb.GEOM_BOX, halfExtents=[(w / 2 + margin) * s, (h / 2 + margin) * s, 0.005],
+            visualFramePosition=[w / 2 * s, h / 2 * s, -0.005], rgbaColor=COLOURS["ground"],
+            physicsClientId=c)
+        ground = pb.createMultiBody(0.0, shape, visual, physicsClientId=c)
+        pb.changeDynamics(ground, -1, lateralFriction=GROUND_FRICTION, physicsClientId=c)
+        return ground
+
+    def _build_solids(self) -> int:
+        s, c = METRES_PER_UNIT, self.client
+        w, h = self.layout.arena
+        t, z = BOUNDARY_THICKNESS, WALL_HEIGHT / 2
+        boxes = [  # (centre, full size, colour): arena walls first, outside [0, w] x [0, h]
+            ((w / 2, -t / 2), (w + 2 * t, t), "wall"),
+            ((w / 2, h + t / 2), (w + 2 * t, t), "wall"),
+            ((-t / 2, h / 2), (t, h), "wall"),
+            ((w + t / 2, h / 2), (t, h), "wall"),
+        ] + [(wall.center, wall.size, "wall") for wall in self.layout.walls]
+        types, extents, radii, lengths, positions, colours = [], [], [], [], [], []
+        for (cx, cy), (sx, sy), colour in boxes:
+            types.append(pb.GEOM_BOX)
+            extents.append([sx / 2 * s, sy / 2 * s, z * s])
+            radii.append(0.0)
+            lengths.append(0.0)
+            positions.append([cx * s, cy * s, z * s])
+            colours.append(COLOURS[colour])
+        for obstacle in self.layout.obstacles:
+            types.append(pb.GEOM_CYLINDER)
+            extents.append([0.0, 0.0, 0.0])
+            radii.append(obstacle.radius * s)
+            lengths.append(WALL_HEIGHT * s)
+            positions.append([obstacle.center[0] * s, obstacle.center[1] * s, z * s])
+            colours.append(COLOURS["obstacle"])
+        shape = pb.createCollisionShapeArray(
+            shapeTypes=types, halfExtents=extents, radii=radii, lengths=lengths,
+            collisionFramePositions=positions, physicsClientId=c)
+        visual = pb.createVisualShapeArray(
+            shapeTypes=types, halfExtents=extents, radii=radii, lengths=lengths,
+            rgbaColors=colours, visualFramePositions=positions, physicsClientId=c)
+        return pb.createMultiBody(0.0, shape, visual, physicsClientId=c)
+
+    def _build_markers(self) -> None:
+        s, c, layout = METRES_PER_UNIT, self.client, self.layout
+        half = layout.start_size / 2 * s
+        square = pb.createVisualShape(pb.GEOM_BOX, halfExtents=[half, half, 0.002],
+                                      rgbaColor=COLOURS["start"], physicsClientId=c)
+        self.start_marker_id = pb.createMultiBody(
+            0.0, -1, square, [layout.start[0] * s, layout.start[1] * s, 0.002],
+            physicsClientId=c)
+        circle = pb.createVisualShape(pb.GEOM_CYLINDER, radius=layout.goal_radius * s,
+                                      length=0.004, rgbaColor=COLOURS["goal"],
+                                      physicsClientId=c)
+        self.goal_marker_id = pb.createMultiBody(
+            0.0, -1, circle, [layout.goal[0] * s, layout.goal[1] * s, 0.002],
+            physicsClientId=c)
+
+    def _build_probe(self, radius: float) -> int:
+        s, c = METRES_PER_UNIT, self.client
+        shape = pb.createCollisionShape(pb.GEOM_CYLINDER, radius=radius * s,
+                                        height=WALL_HEIGHT / 2 * s, physicsClientId=c)
+        probe = pb.createMultiBody(0.0, shape, -1, [0.0, 0.0, -WALL_HEIGHT * s],
+                                   physicsClientId=c)
+        # The probe only answers distance queries; it never touches anything in the simulation.
+        pb.setCollisionFilterGroupMask(probe, -1, 0, 0, physicsClientId=c)
+        return probe
+
+    def move_markers(self, start: tuple[float, float], goal: tuple[float, float]) -> None:
+        """Show the start square and the goal circle at these centres (maze units)."""
+        s = METRES_PER_UNIT
+        for marker, (x, y) in ((self.start_marker_id, start), (self.goal_marker_id, goal)):
+            pb.resetBasePositionAndOrientation(marker, [x * s, y * s, 0.002], _IDENTITY,
+                                               physicsClientId=self.client)
+
+    def place_probe(self, x: float, y: float) -> None:
+        """Put the probe's centre at (x, y) in maze units."""
+        if (x, y) != self._probe_xy:
+            s = METRES_PER_UNIT
+            pb.resetBasePositionAndOrientation(self.probe_id, (x * s, y * s, WALL_HEIGHT / 4 * s),
+                                               _IDENTITY, physicsClientId=self.client)
+            self._probe_xy = (x, y)
+
+    def distance(self, x: float, y: float, reach: float) -> float:
+        """Distance (maze units) from a robot footprint at (x, y) to the nearest solid, or
+        ``math.inf`` if nothing is within ``reach``."""
+        self.place_probe(x, y)
+        points = pb.getClosestPoints(self.probe_id, self.solid_id,
+                                     (reach + CONTACT_TOLERANCE) * METRES_PER_UNIT,
+                                     physicsClientId=self.client)
+        if not points:
+            return math.inf
+        return min(point[8] for point in points) / METRES_PER_UNIT
+
+    def clear_within(self, x: float, y: float, reach: float) -> bool:
+        """Whether a footprint centred anywhere within ``reach`` of (x, y) is free; answered
+        from the safe ball when it covers that disc, else by a distance query that renews it."""
+        cx, cy, safe = self._safe
+        if math.hypot(x - cx, y - cy) + reach <= safe:
+            return True
+        look = max(reach, SAFE_REACH)
+        gap = self.distance(x, y, look)
+        self._safe = (x, y, min(gap, look) - CONTACT_TOLERANCE)
+        return reach <= self._safe[2]
+
+    def sweep_collides(self, x0: float, y0: float, x1: float, y1: float) -> bool:
+        """Whether the robot's footprint comes within ``CONTACT_TOLERANCE`` of a solid anywhere
+        on the straight move from (x0, y0) to (x1, y1).
+
+        Sphere tracing with pybullet distance queries: the footprint may advance along the move
+        by its distance to the nearest solid (less the tolerance) without touching anything, so
+        the first query usually clears the whole move at once, a move near a wall takes a few,
+        and no wall is skipped however thin. The first query's free disc is remembered, and
+        moves inside it need no query.
+        """
+        cx, cy, safe = self._safe
+        if (math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x0 - cx, y0 - cy) <= safe):
+            return False  # both ends, hence the whole segment, inside a certified free disc
+        length = math.hypot(x1 - x0, y1 - y0)
+        gap = self.distance(x0, y0, max(length, SAFE_REACH))
+        # Every footprint centred within gap - tolerance of (x0, y0) is free.
+        self._safe = (x0, y0, min(gap, max(length, SAFE_REACH)) - CONTACT_TOLERANCE)
+        travelled = 0.0
+        x, y = x0, y0
+        for _ in range(MAX_SWEEP_QUERIES):
+            remaining = length - travelled
+            if travelled > 0.0:
+                gap = self.distance(x, y, remaining)
+            if gap < CONTACT_TOLERANCE:
+                return True
+            if gap - CONTACT_TOLERANCE >= remaining:
+                return False
+            travelled += gap - CONTACT_TOLERANCE
+            t = travelled / length
+            x, y = x0 + t * (x1 - x0), y0 + t * (y1 - y0)
+        return True
+
+    def touching(self, body_id: int) -> bool:
+        """Whether a simulated body is in contact with a wall or an obstacle."""
+        limit = CONTACT_TOLERANCE * METRES_PER_UNIT
+        return any(point[8] < limit for point in pb.getContactPoints(
+            body_id, self.solid_id, physicsClientId=self.client))
+
+    def touching_now(self, body_id: int) -> bool:
+        """``touching`` after a fresh collision detection of the current poses."""
+        pb.performCollisionDetection(physicsClientId=self.client)
+        return self.touching(body_id)
