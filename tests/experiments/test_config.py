@@ -14,6 +14,7 @@ from experiments.config import (
     same_experiment,
     with_overrides,
 )
+from experiments.factory import check_agent_params
 
 
 def _broken(data: dict, **edits: object) -> dict:
@@ -137,9 +138,6 @@ def test_paper_fig4_is_the_papers_setting():
     ],
 )
 def test_agent_parameters_are_checked_against_the_agent(small_data, edit, named):
-    pytest.importorskip("agent")
-    from experiments.factory import check_agent_params
-
     edit(small_data)
     config = parse_config(small_data, source="agent.toml")
     with pytest.raises(ConfigError) as error:
@@ -149,8 +147,5 @@ def test_agent_parameters_are_checked_against_the_agent(small_data, edit, named)
 
 
 def test_shipped_experiments_pass_the_agent_check():
-    pytest.importorskip("agent")
-    from experiments.factory import check_agent_params
-
     for name in ("paper_fig4", "quick"):
         check_agent_params(load_config(name))

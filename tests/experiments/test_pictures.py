@@ -4,14 +4,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import gymnasium
 import numpy as np
 import pytest
 
+import agent as agent_module
+from bullet_maze import layout as layout_module
 from experiments.partition import greedy_actions, partition_figure
-
-agent_module = pytest.importorskip("agent")
-layout_module = pytest.importorskip("bullet_maze.layout")
-gymnasium = pytest.importorskip("gymnasium")
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 DIRECTIONS = np.array([(0.0, 1.0), (0.0, -1.0), (-1.0, 0.0), (1.0, 0.0)])

@@ -124,16 +124,6 @@ def test_resume_after_a_kill(small_config, standins, tmp_path: Path,
     assert (out / "episodes.csv").read_bytes() == (fresh / "episodes.csv").read_bytes()
 
 
-def test_ray_backend_matches_the_process_pool(small_config, standins, tmp_path: Path):
-    pytest.importorskip("ray")
-    config = with_overrides(small_config, runs=2)
-    runner.run_experiment(config, tmp_path / "pool", ProcessBackend(2), standins.fake_run)
-    runner.run_experiment(config, tmp_path / "ray", make_backend("ray", workers=2),
-                          standins.fake_run)
-    assert (tmp_path / "ray" / "episodes.csv").read_bytes() == (
-        tmp_path / "pool" / "episodes.csv").read_bytes()
-
-
 def test_unknown_backend_is_named():
     with pytest.raises(ValueError, match="gpu"):
         make_backend("gpu")

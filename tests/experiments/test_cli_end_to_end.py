@@ -1,0 +1,226 @@
+"""run.py end to end with the real environment and agent, at a tiny scale."""
+
+from __future__ import annotations
+
+import csv
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import run
+from experiments import store
+
+ROOT = Path(run.__file__).resolve().parent
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+TINY = """
+[experiment]
+name = "tiny"
+seed = 5
+runs = 2
+episodes = {episodes}
+baseline = "eps"
+smoothing_window = 2
+final_window = 2
+
+[env]
+maze = "paper"
+max_episode_steps = {cap}
+
+[agent]
+alpha = 0.3
+gamma = 0.99
+split_min_samples = 50
+
+[[strategy]]
+name = "eps"
+exploration = "epsilon-greedy"
+exploration_params = {{ epsilon = 0.1 }}
+
+[[strategy]]
+name = "adaptive+tabu"
+exploration = "adaptive+tabu"
+
+[[strategy]]
+name = "grid-6"
+agent = "grid"
+resolution = 6
+exploration = "epsilon-greedy"
+exploration_params = {{ epsilon = 0.1 }}
+"""
+
+
+def tiny_config(folder: Path, episodes: int = 4, cap: int = 120, runs: int = 2) -> Path:
+    """A three-strategy experiment file small enough for a test."""
+    path = folder / "tiny.toml"
+    path.write_text(TINY.format(episodes=episodes, cap=cap).replace("runs = 2", f"runs = {runs}"))
+    return path
+
+
+def assert_png(path: Path) -> None:
+    data = path.read_bytes()
+    assert data[:8] == PNG_SIGNATURE, path
+    assert len(data) > 10_000, path
+
+
+def read_csv(path: Path) -> list[dict[str, str]]:
+    with path.open(newline="") as handle:
+        return list(csv.DictReader(handle))
+
+
+@pytest.fixture(scope="module")
+def trained(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]:
+    """A folder written by ``run.py train`` (small), and what it printed."""
+    out = tmp_path_factory.mktemp("train") / "agent"
+    argv = ["train", "--episodes", "6", "--max-episode-steps", "150", "--seed", "3",
+            "--time-budget", "0", "--no-progress", "--out", str(out)]
+    result = subprocess.run([sys.executable, str(ROOT / "run.py"), *argv], cwd=ROOT,
+                            capture_output=True, text=True, timeout=120, check=True)
+    return out, result.stdout
+
+
+def test_train_writes_its_folder(trained):
+    out, stdout = trained
+    assert sorted(p.name for p in out.iterdir()) == [
+        "agent.npz", "config.toml", "episodes.csv", "learning_curve.png", "meta.json",
+        "partition.png"]
+    rows = read_csv(out / "episodes.csv")
+    assert list(rows[0]) == list(store.COLUMNS)
+    assert [int(r["episode"]) for r in rows] == list(range(1, 7))
+    for row in rows:
+        steps = int(row["steps"])
+        assert 1 <= steps <= 150
+        assert row["success"] in {"0", "1"}
+        assert (row["truncated"] == "1") == (steps == 150 and row["success"] == "0")
+        assert int(row["leaves"]) >= 1
+        assert -2.0 * steps <= float(row["return"]) <= 5.0
+    assert_png(out / "learning_curve.png")
+    assert_png(out / "partition.png")
+    for phrase in ("success rate", "vs optimal", "leaves:", "steps/s"):
+        assert phrase in stdout
+
+
+def test_same_seed_same_training(trained, tmp_path: Path):
+    out, _ = trained
+    assert run.main(["train", "--episodes", "6", "--max-episode-steps", "150", "--seed", "3",
+                     "--time-budget", "0", "--no-progress", "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "episodes.csv").read_bytes() == (out / "episodes.csv").read_bytes()
+
+
+def test_default_job_runs_the_quick_config(tmp_path: Path, monkeypatch, capsys):
+    (tmp_path / "q.toml").write_text(
+        (ROOT / "experiments" / "quick.toml").read_text()
+        .replace("episodes = 2000", "episodes = 3")
+        .replace("max_episode_steps = 5000", "max_episode_steps = 100"))
+    monkeypatch.setattr(run, "DEFAULT_CONFIG", str(tmp_path / "q.toml"))
+    monkeypatch.setattr(run, "RESULTS_DIR", tmp_path / "results")
+    assert run.main([]) == 0
+    folders = list((tmp_path / "results").iterdir())
+    assert len(folders) == 1
+    assert folders[0].name.startswith("paper__adaptive+tabu__")
+    assert len(read_csv(folders[0] / "episodes.csv")) == 3
+    printed = capsys.readouterr().out
+    assert "training adaptive+tabu" in printed
+    assert "all episodes done" in printed
+
+
+def test_time_budget_stops_training(tmp_path: Path, capsys):
+    assert run.main(["train", "--episodes", "1000", "--max-episode-steps", "100",
+                     "--time-budget", "0.01", "--no-progress", "--out", str(tmp_path)]) == 0
+    assert len(read_csv(tmp_path / "episodes.csv")) < 1000
+    assert "stopped by the time budget" in capsys.readouterr().out
+
+
+def test_evaluate_in_dynamic_mode_with_the_husky(trained, capsys):
+    out, _ = trained
+    assert run.main(["evaluate", str(out), "--episodes", "1", "--mode", "dynamic",
+                     "--robot", "husky", "--max-episode-steps", "5"]) == 0
+    printed = capsys.readouterr().out
+    assert "heading dropped" in printed
+    assert "success rate: 0.0%" in printed
+    assert "mean 5.0" in printed
+
+
+def test_evaluate_reports_success_and_steps(trained, capsys):
+    out, _ = trained
+    assert run.main(["evaluate", str(out / "agent.npz"), "--episodes", "2",
+                     "--max-episode-steps", "50"]) == 0
+    printed = capsys.readouterr().out
+    assert "2 greedy episodes" in printed
+    assert "success rate:" in printed
+
+
+def test_render_writes_a_gif(trained, tmp_path: Path):
+    out, _ = trained
+    gif = tmp_path / "episode.gif"
+    assert run.main(["render", str(out), "--out", str(gif), "--max-episode-steps", "20",
+                     "--max-frames", "5"]) == 0
+    assert gif.read_bytes()[:6] == b"GIF89a"
+
+
+def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys):
+    config = tiny_config(tmp_path)
+    for workers in ("1", "2"):
+        assert run.main(["experiment", str(config), "--workers", workers, "--no-progress",
+                         "--out", str(tmp_path / f"w{workers}")]) == 0
+    one, two = tmp_path / "w1", tmp_path / "w2"
+    assert (one / "episodes.csv").read_bytes() == (two / "episodes.csv").read_bytes()
+    rows = read_csv(one / "episodes.csv")
+    assert len(rows) == 3 * 2 * 4
+    assert {r["strategy"] for r in rows} == {"eps", "adaptive+tabu", "grid-6"}
+    by_run = {(r["strategy"], r["run"]): r["seed"] for r in rows}
+    assert by_run[("eps", "0")] == by_run[("grid-6", "0")] != by_run[("eps", "1")]
+    assert all(int(r["leaves"]) == 36 for r in rows if r["strategy"] == "grid-6")
+    for name in ("figure4.png", "leaves.png"):
+        assert_png(one / name)
+    summary = read_csv(one / "summary.csv")
+    assert [r["strategy"] for r in summary] == ["eps", "adaptive+tabu", "grid-6"]
+    assert float(summary[0]["p_improvement"]) == 0.5
+    assert "report:" in capsys.readouterr().out
+
+
+def test_experiment_resumes_after_a_kill(tmp_path: Path):
+    config = tiny_config(tmp_path, episodes=20, cap=200, runs=3)
+    out = tmp_path / "killed"
+    command = [sys.executable, str(ROOT / "run.py"), "experiment", str(config), "--backend",
+               "serial", "--no-progress", "--out", str(out)]
+    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 60
+    while not list((out / "runs").glob("*.csv")) and time.monotonic() < deadline:
+        time.sleep(0.01)
+    process.send_signal(signal.SIGKILL)
+    process.wait()
+    finished = {p.name: p.stat().st_mtime_ns for p in (out / "runs").glob("*.csv")}
+    assert 1 <= len(finished) < 9, "the kill came too late to test a resume"
+    assert not (out / "episodes.csv").exists()
+
+    subprocess.run(command, cwd=ROOT, check=True, capture_output=True, timeout=120)
+    assert len(list((out / "runs").glob("*.csv"))) == 9
+    for name, mtime in finished.items():
+        assert (out / "runs" / name).stat().st_mtime_ns == mtime, f"{name} was recomputed"
+
+    fresh = tmp_path / "fresh"
+    assert run.main([*command[2:-1], str(fresh)]) == 0
+    assert (out / "episodes.csv").read_bytes() == (fresh / "episodes.csv").read_bytes()
+
+
+def test_ray_backend_gives_the_same_csv(tmp_path: Path):
+    pytest.importorskip("ray")
+    config = tiny_config(tmp_path, runs=1)
+    for backend in ("serial", "ray"):
+        assert run.main(["experiment", str(config), "--backend", backend, "--workers", "2",
+                         "--no-progress", "--out", str(tmp_path / backend)]) == 0
+    assert (tmp_path / "ray" / "episodes.csv").read_bytes() == (
+        tmp_path / "serial" / "episodes.csv").read_bytes()
+    meta = [store.read_run(tmp_path / "ray" / "runs", p.stem).meta
+            for p in (tmp_path / "ray" / "runs").glob("*.csv")]
+    assert len(meta) == 3
+    assert all(m["meta"]["pid"] != os.getpid() for m in meta)
+    assert all(np.isfinite(m["steps_per_second"]) for m in meta)
