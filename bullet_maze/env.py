@@ -270,7 +270,7 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         if self._client < 0:
             raise RuntimeError("reset() called on a closed BulletMazeEnv")
         start, heading, goal = self._parse_options(options)
-        pb.restoreState(self._initial_state, physicsClientId=self._client)
+        self.world.restore(self._initial_state)
         self.robot.place(start[0], start[1], heading)
         self._x, self._y = start
         self._heading = wrap_angle(heading) if self.robot.has_heading else heading

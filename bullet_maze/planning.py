@@ -64,8 +64,13 @@ class PhysicalLimit:
 
 
 def goal_reachable(layout: MazeLayout, robot_radius: float) -> bool:
-    """Whether a disc of ``robot_radius`` can move from the start into the goal circle."""
-    grid = _Grid(layout, robot_radius, min(2 * GRID_RESOLUTION, layout.goal_radius / 2.0))
+    """Whether a disc of ``robot_radius`` can move from the start into the goal circle.
+
+    Decided on a grid of cells no larger than half the radius: a gap that leaves the robot's
+    centre a band narrower than one cell may be missed (reported unreachable).
+    """
+    resolution = min(2 * GRID_RESOLUTION, robot_radius / 2.0, layout.goal_radius / 2.0)
+    grid = _Grid(layout, robot_radius, resolution)
     edges = grid.edges(diagonal=False)
     _, labels = connected_components(edges, directed=False)
     start = grid.start_node()

@@ -139,6 +139,11 @@ class World:
             pb.resetBasePositionAndOrientation(marker, [x * s, y * s, 0.002], _IDENTITY,
                                                physicsClientId=self.client)
 
+    def restore(self, state_id: int) -> None:
+        """``pybullet.restoreState``: bodies, the probe included, go back to a saved state."""
+        pb.restoreState(state_id, physicsClientId=self.client)
+        self._probe_xy = (math.nan, math.nan)
+
     def place_probe(self, x: float, y: float) -> None:
         """Put the probe's centre at (x, y) in maze units."""
         if (x, y) != self._probe_xy:
@@ -150,10 +155,7 @@ class World:
     def distance(self, x: float, y: float, reach: float) -> float:
         """Distance (maze units) from a robot footprint at (x, y) to the nearest solid, or
         ``math.inf`` if nothing is within ``reach``."""
-        self.place_probe(x, y)
-        points = pb.getClosestPoints(self.probe_id, self.solid_id,
-                                     (reach + CONTACT_TOLERANCE) * METRES_PER_UNIT,
-                                     physicsClientId=self.client)
+        points = self._closest(x, y, reach)
         if not points:
             return math.inf
         return min(point[8] for point in points) / METRES_PER_UNIT
@@ -173,33 +175,51 @@ class World:
         """Whether the robot's footprint comes within ``CONTACT_TOLERANCE`` of a solid anywhere
         on the straight move from (x0, y0) to (x1, y1).
 
-        Sphere tracing with pybullet distance queries: the footprint may advance along the move
-        by its distance to the nearest solid (less the tolerance) without touching anything, so
-        the first query usually clears the whole move at once, a move near a wall takes a few,
-        and no wall is skipped however thin. The first query's free disc is remembered, and
-        moves inside it need no query.
+        Conservative advancement with pybullet closest-point queries: each returned point gives
+        the distance d to one convex piece (a box or a cylinder) and the normal n pointing away
+        from it. The distance to a convex piece is a convex function of the travelled length t,
+        so d(t) >= d + t (u . n) along the move direction u: the footprint may advance until the
+        smallest such bound reaches the tolerance. A flat wall is passed or hit in one query, a
+        move far from everything is cleared by the first, and no wall is skipped however thin.
+        The first query's free disc (the "safe ball") is remembered; moves inside it need no
+        query at all.
         """
         cx, cy, safe = self._safe
-        if (math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x0 - cx, y0 - cy) <= safe):
+        if math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x0 - cx, y0 - cy) <= safe:
             return False  # both ends, hence the whole segment, inside a certified free disc
         length = math.hypot(x1 - x0, y1 - y0)
-        gap = self.distance(x0, y0, max(length, SAFE_REACH))
-        # Every footprint centred within gap - tolerance of (x0, y0) is free.
-        self._safe = (x0, y0, min(gap, max(length, SAFE_REACH)) - CONTACT_TOLERANCE)
+        if length == 0.0:
+            return not self.clear_within(x0, y0, 0.0)
+        ux, uy = (x1 - x0) / length, (y1 - y0) / length
+        look = max(length, SAFE_REACH)
+        points = self._closest(x0, y0, look)
+        gap = min((p[8] for p in points), default=math.inf) / METRES_PER_UNIT
+        self._safe = (x0, y0, min(gap, look) - CONTACT_TOLERANCE)
         travelled = 0.0
-        x, y = x0, y0
         for _ in range(MAX_SWEEP_QUERIES):
-            remaining = length - travelled
-            if travelled > 0.0:
-                gap = self.distance(x, y, remaining)
-            if gap < CONTACT_TOLERANCE:
-                return True
-            if gap - CONTACT_TOLERANCE >= remaining:
+            advance = math.inf
+            for point in points:
+                distance = point[8] / METRES_PER_UNIT
+                if distance < CONTACT_TOLERANCE:
+                    return True
+                normal = point[7]
+                rate = ux * normal[0] + uy * normal[1]
+                if rate < 0.0:
+                    advance = min(advance, (distance - CONTACT_TOLERANCE) / -rate)
+            travelled += advance
+            if travelled >= length:
                 return False
-            travelled += gap - CONTACT_TOLERANCE
-            t = travelled / length
-            x, y = x0 + t * (x1 - x0), y0 + t * (y1 - y0)
+            points = self._closest(x0 + travelled * ux, y0 + travelled * uy,
+                                   length - travelled)
         return True
+
+    def _closest(self, x: float, y: float, reach: float) -> list[tuple]:
+        """pybullet's closest points between the footprint at (x, y) and every solid piece
+        within ``reach`` (plus the tolerance)."""
+        self.place_probe(x, y)
+        return pb.getClosestPoints(self.probe_id, self.solid_id,
+                                   (reach + CONTACT_TOLERANCE) * METRES_PER_UNIT,
+                                   physicsClientId=self.client)
 
     def touching(self, body_id: int) -> bool:
         """Whether a simulated body is in contact with a wall or an obstacle."""
