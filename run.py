@@ -332,12 +332,12 @@ def cmd_default(args: argparse.Namespace) -> int:
 
 def cmd_experiment(args: argparse.Namespace) -> int:
     """Run (or resume) an experiment file in parallel, then write its report."""
+    config = config_module.load_config(args.config)
     from tqdm import tqdm
 
     from experiments import factory, runner
     from experiments.report import write_report
 
-    config = config_module.load_config(args.config)
     file_config = config
     config = config_module.with_overrides(config, runs=args.runs, episodes=args.episodes,
                                           seed=args.seed,
@@ -367,7 +367,10 @@ def cmd_experiment(args: argparse.Namespace) -> int:
             rate = sum(r.env_steps for r in computed) / sum(r.wall_time_s for r in computed)
             print(f"computed {len(computed)} runs in {elapsed:.1f} s; {rate:,.0f} steps/s per "
                   f"worker (env + agent)")
-    report = write_report(config, out)
+    try:
+        report = write_report(config, out)
+    except ValueError as error:
+        raise ConfigError(str(error)) from None
     _print_experiment_summary(report)
     return 0
 

@@ -97,6 +97,8 @@ class ExperimentConfig:
     """Moving-average window (episodes) of the curves and of the convergence test."""
     final_window: int = 100
     """Episodes at the end of a run that make its final performance."""
+    convergence_tolerance: float = 0.1
+    """Converged once the moving average stays within this fraction of the final value."""
     time_budget_s: float | None = None
     """Wall-clock cap of one run, for the quick default job only (results then depend on speed)."""
     description: str = ""
@@ -176,6 +178,10 @@ def parse_config(data: Mapping[str, Any], source: str = "<config>") -> Experimen
     if baseline is not None and baseline not in names:
         raise ConfigError(f"{source}: [experiment] baseline: {baseline!r} is not a strategy "
                           f"(known: {', '.join(names)})")
+    tolerance = reader.value(meta, "experiment", "convergence_tolerance", (int, float), 0.1)
+    if not 0 < tolerance < 1:
+        raise ConfigError(f"{source}: [experiment] convergence_tolerance: must be in (0, 1), "
+                          f"got {tolerance}")
     budget = reader.value(meta, "experiment", "time_budget_s", (int, float), None)
     if budget is not None and budget <= 0:
         raise ConfigError(f"{source}: [experiment] time_budget_s: must be > 0, got {budget}")
@@ -190,6 +196,7 @@ def parse_config(data: Mapping[str, Any], source: str = "<config>") -> Experimen
         baseline=baseline,
         smoothing_window=reader.positive(meta, "experiment", "smoothing_window", 50),
         final_window=reader.positive(meta, "experiment", "final_window", 100),
+        convergence_tolerance=float(tolerance),
         time_budget_s=None if budget is None else float(budget),
         description=reader.value(meta, "experiment", "description", str, ""),
         source=source,
@@ -221,6 +228,7 @@ def to_dict(config: ExperimentConfig) -> dict[str, Any]:
         "name": config.name, "description": config.description, "seed": config.seed,
         "runs": config.runs, "episodes": config.episodes,
         "smoothing_window": config.smoothing_window, "final_window": config.final_window,
+        "convergence_tolerance": config.convergence_tolerance,
     }
     if config.baseline is not None:
         meta["baseline"] = config.baseline

@@ -55,6 +55,7 @@ def write_report(config: ExperimentConfig, out_dir: Path, seed: int = 0) -> Repo
         summarize(
             name, _stack(runs, "steps"), _stack(runs, "success"), _stack(runs, "leaves"),
             baseline_final, window=window, final_window=final_window,
+            tolerance=config.convergence_tolerance,
             wall_time_s=np.array([r.meta.get("wall_time_s", np.nan) for r in runs]),
             steps_per_second=np.array([r.meta.get("steps_per_second", np.nan) for r in runs]),
         )
@@ -161,7 +162,8 @@ def render_markdown(config: ExperimentConfig, summaries: tuple[StrategySummary, 
         "## Definitions",
         "",
         f"- **Episodes to convergence**: the first episode after which the run's {window}-episode "
-        f"moving average of steps stays within 10% of its final value (the mean of its last "
+        f"moving average of steps stays within {config.convergence_tolerance:.0%} of its final "
+        f"value (the mean of its last "
         f"{final_window} episodes). *Not converged* when that only happens within the last "
         f"{final_window} episodes, or when fewer than half of them reached the goal.",
         f"- **Final steps**: mean steps of the last {final_window} episodes of a run (a capped "

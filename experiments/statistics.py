@@ -155,7 +155,8 @@ class StrategySummary:
 
 def summarize(strategy: str, steps: np.ndarray, successes: np.ndarray, leaves: np.ndarray,
               baseline_final: np.ndarray | None, window: int = 50,
-              final_window: int = 100, wall_time_s: np.ndarray | None = None,
+              final_window: int = 100, tolerance: float = 0.1,
+              wall_time_s: np.ndarray | None = None,
               steps_per_second: np.ndarray | None = None) -> StrategySummary:
     """Compute a strategy's row from its runs x episodes arrays."""
     steps = np.atleast_2d(np.asarray(steps, dtype=float))
@@ -173,10 +174,10 @@ def summarize(strategy: str, steps: np.ndarray, successes: np.ndarray, leaves: n
         success_rate=successes.mean(axis=1),
         final_success_rate=final_success,
         leaves=leaves[:, -1],
-        convergence=[convergence_episode(run, window, final_window=final_window,
+        convergence=[convergence_episode(run, window, tolerance, final_window=final_window,
                                          final_success=rate)
                      for run, rate in zip(steps, final_success, strict=True)],
-        curve_convergence=convergence_episode(steps.mean(axis=0), window,
+        curve_convergence=convergence_episode(steps.mean(axis=0), window, tolerance,
                                               final_window=final_window,
                                               final_success=float(final_success.mean())),
         wall_time_s=nan if wall_time_s is None else np.asarray(wall_time_s, dtype=float),

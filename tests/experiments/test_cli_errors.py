@@ -52,3 +52,8 @@ def test_every_option_is_explained(capsys):
     for name, sub in subparsers.items():
         for action in sub._actions:
             assert action.help, f"{name} {action.option_strings or action.dest} has no help"
+
+
+def test_report_of_an_empty_folder_is_an_error(tmp_path: Path, capsys):
+    error = _fails(["experiment", "quick", "--report-only", "--out", str(tmp_path)], capsys)
+    assert "no finished runs" in error
