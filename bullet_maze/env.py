@@ -27,6 +27,9 @@ from bullet_maze.world import CONTACT_TOLERANCE, World
 
 logger = logging.getLogger(__name__)
 
+NOISE_BLOCK = 1024
+"""Steps of noise drawn from ``np_random`` at once (one draw per step costs more than a step)."""
+
 _TASK = TaskParams()
 _PHYSICS = PhysicsParams()
 
@@ -115,8 +118,9 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
       TinyRenderer image, no display needed) or `"human"` (the pybullet GUI).
     * `step_size`, `noise_variance`, `goal_reward`, `collision_reward`, `step_reward`: the task,
       defaults from section V.A (`bullet_maze.params.TaskParams`).
-    * `time_step`, `substeps`, `revert_on_collision`, `max_turn_substeps`,
-      `max_drive_substeps`: dynamic mode (`bullet_maze.params.PhysicsParams`).
+    * `time_step`, `substeps`, `solver_iterations`, `revert_on_collision`,
+      `max_turn_substeps`, `max_drive_substeps`: dynamic mode
+      (`bullet_maze.params.PhysicsParams`).
     * `render_width`, `render_height`: image size in pixels.
 
     `reset(seed=..., options={"start": (x, y) or (x, y, heading), "goal": (x, y)})` moves the
@@ -145,6 +149,7 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         step_reward: float = _TASK.step_reward,
         time_step: float = _PHYSICS.time_step,
         substeps: int = _PHYSICS.substeps,
+        solver_iterations: int = _PHYSICS.solver_iterations,
         revert_on_collision: bool = _PHYSICS.revert_on_collision,
         max_turn_substeps: int = _PHYSICS.max_turn_substeps,
         max_drive_substeps: int = _PHYSICS.max_drive_substeps,
@@ -162,8 +167,8 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
         self.task = TaskParams(step_size, noise_variance, goal_reward, collision_reward,
                                step_reward)
-        self.physics = PhysicsParams(time_step, substeps, revert_on_collision,
-                                     max_turn_substeps, max_drive_substeps)
+        self.physics = PhysicsParams(time_step, substeps, solver_iterations,
+                                     revert_on_collision, max_turn_substeps, max_drive_substeps)
         self.layout = load_layout(maze)
         self.mode = mode
         self.render_mode = render_mode
@@ -175,8 +180,11 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             if not math.isclose(self.robot.radius, self.layout.robot_radius, rel_tol=1e-6):
                 self.layout.validate(robot_radius=self.robot.radius)
             self.world = World(self._client, self.layout, self.robot.radius)
+            self.physics = self._enough_substeps(self.physics)
             pb.setGravity(0.0, 0.0, -9.81, physicsClientId=self._client)
-            pb.setTimeStep(self.physics.time_step, physicsClientId=self._client)
+            pb.setPhysicsEngineParameter(fixedTimeStep=self.physics.time_step,
+                                         numSolverIterations=self.physics.solver_iterations,
+                                         physicsClientId=self._client)
             self.robot.configure(self.physics)
             self.robot.place(*self.layout.start, self.layout.start_heading)
             self._initial_state = pb.saveState(physicsClientId=self._client)
@@ -194,6 +202,8 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
 
         self._moves = [(float(mx), float(my)) for mx, my in DIRECTIONS * self.task.step_size]
         self._noise_std = self.task.noise_std
+        self._noise: list[float] = []
+        self._noise_index = 0
         self._x, self._y = self.layout.start
         self._heading = self.layout.start_heading
         self._start = self.layout.start
@@ -216,6 +226,19 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             return client
         return pb.connect(pb.DIRECT)
 
+    def _enough_substeps(self, physics: PhysicsParams) -> PhysicsParams:
+        """At least as many substeps as keep every substep's move within the robot's radius
+        (a step's length plus four standard deviations of its noise)."""
+        if self.robot.has_heading:  # wheeled robots creep at wheel speed, whatever the step
+            return physics
+        longest = self.task.step_size + 4.0 * math.sqrt(2.0) * self.task.noise_std
+        needed = math.ceil(longest / self.robot.radius)
+        if physics.substeps >= needed:
+            return physics
+        logger.info("substeps raised from %d to %d so that no substep moves the robot farther "
+                    "than its radius", physics.substeps, needed)
+        return dataclasses.replace(physics, substeps=needed)
+
     def _make_robot(self, robot: str | Path, radius: float | None) -> Robot:
         is_path = isinstance(robot, Path) or (isinstance(robot, str) and robot.endswith(".urdf"))
         if not isinstance(robot, str | Path):
@@ -236,9 +259,11 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         if (kind is not int and kind is not np.int64) or not 0 <= action < 4:
             action = self._check_action(action)
         mx, my = self._moves[action]
-        nx, ny = self.np_random.standard_normal(2).tolist()
-        dx = mx + nx * self._noise_std
-        dy = my + ny * self._noise_std
+        if self._noise_index >= len(self._noise):
+            self._draw_noise()
+        dx = mx + self._noise[self._noise_index]
+        dy = my + self._noise[self._noise_index + 1]
+        self._noise_index += 2
         x0, y0 = self._x, self._y
         if self.mode == "kinematic":
             collided = self.world.sweep_collides(x0, y0, x0 + dx, y0 + dy)
@@ -269,6 +294,8 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         super().reset(seed=seed)
         if self._client < 0:
             raise RuntimeError("reset() called on a closed BulletMazeEnv")
+        if seed is not None:  # a new stream: forget noise drawn from the old one
+            self._noise, self._noise_index = [], 0
         start, heading, goal = self._parse_options(options)
         self.world.restore(self._initial_state)
         self.robot.place(start[0], start[1], heading)
@@ -344,8 +371,16 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
     # -- Internals -----------------------------------------------------------------------
 
     def _dynamic_step(self, dx: float, dy: float) -> bool:
-        reach = math.hypot(dx, dy) + self.robot.reach_margin
-        near = not self.world.clear_within(self._x, self._y, reach)
+        length = math.hypot(dx, dy)
+        reach = length + self.robot.reach_margin
+        if self.robot.has_heading:
+            near = not self.world.clear_within(self._x, self._y, reach)
+        else:
+            # A holonomic body moves along its command and only friction shortens the move, so
+            # contacts need watching only if the commanded segment (a little longer) may touch.
+            stretch = reach / length if length > 0.0 else 0.0
+            near = self.world.sweep_collides(self._x, self._y, self._x + dx * stretch,
+                                             self._y + dy * stretch)
         client, body = self._client, self.robot.body_id
         if near and self.physics.revert_on_collision:
             saved = pb.getBasePositionAndOrientation(body, physicsClientId=client)
@@ -361,6 +396,13 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         self._x, self._y = min(max(x, 0.0), width), min(max(y, 0.0), height)
         self._heading = heading
         return touched
+
+    def _draw_noise(self) -> None:
+        """Section V.A's noise for the next ``NOISE_BLOCK`` steps, from the seeded ``np_random``
+        in one draw (x then y for each step, so the stream is the same as drawing per step)."""
+        block = self.np_random.standard_normal(2 * NOISE_BLOCK) * self._noise_std
+        self._noise = block.tolist()
+        self._noise_index = 0
 
     def _observation(self) -> np.ndarray:
         if self.robot.has_heading:

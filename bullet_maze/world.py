@@ -32,6 +32,10 @@ SAFE_REACH = 25.0
 """Maze units: each sweep's first distance query looks this far, and the free disc it certifies
 (the "safe ball") lets the following moves that stay inside it skip pybullet altogether."""
 
+BALL_CELL = 5.0
+"""Maze units: side of the square cells under which safe balls are remembered. The solids
+never move, so a ball certified once stays valid for the life of the world."""
+
 MAX_SWEEP_QUERIES = 256
 """Bound on the distance queries of one sweep; a sweep that needs more counts as a collision."""
 
@@ -60,6 +64,7 @@ class World:
         self.probe_id = self._build_probe(robot_radius)
         self._probe_xy = (math.nan, math.nan)
         self._safe = (math.nan, math.nan, -math.inf)  # centre x, y and radius of the safe ball
+        self._balls: dict[tuple[int, int], tuple[float, float, float]] = {}
 
     def _build_ground(self) -> int:
         s, c = METRES_PER_UNIT, self.client
@@ -181,12 +186,19 @@ class World:
         so d(t) >= d + t (u . n) along the move direction u: the footprint may advance until the
         smallest such bound reaches the tolerance. A flat wall is passed or hit in one query, a
         move far from everything is cleared by the first, and no wall is skipped however thin.
-        The first query's free disc (the "safe ball") is remembered; moves inside it need no
-        query at all.
+        The first query's free disc (the "safe ball") is remembered, the latest and the largest
+        per cell of the arena; moves inside one need no query at all.
         """
         cx, cy, safe = self._safe
         if math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x0 - cx, y0 - cy) <= safe:
             return False  # both ends, hence the whole segment, inside a certified free disc
+        cell = (int(x0 // BALL_CELL), int(y0 // BALL_CELL))
+        ball = self._balls.get(cell)
+        if ball is not None:
+            cx, cy, safe = ball
+            if math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x0 - cx, y0 - cy) <= safe:
+                self._safe = ball
+                return False
         length = math.hypot(x1 - x0, y1 - y0)
         if length == 0.0:
             return not self.clear_within(x0, y0, 0.0)
@@ -195,6 +207,8 @@ class World:
         points = self._closest(x0, y0, look)
         gap = min((p[8] for p in points), default=math.inf) / METRES_PER_UNIT
         self._safe = (x0, y0, min(gap, look) - CONTACT_TOLERANCE)
+        if ball is None or self._safe[2] > ball[2]:
+            self._balls[cell] = self._safe
         travelled = 0.0
         for _ in range(MAX_SWEEP_QUERIES):
             advance = math.inf
