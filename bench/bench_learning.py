@@ -67,8 +67,9 @@ def worker_speedup(runs: int, episodes: int) -> tuple[float, float, bool]:
     unequal the runs are. Worker start-up (spawn, imports) is included.
     """
     config = with_overrides(load_config("quick"), runs=runs, episodes=episodes)
-    config = dataclasses.replace(config, time_budget_s=None, baseline=None,
-                                 strategies=(config.strategy("eps-greedy-0.015"),))
+    config = dataclasses.replace(
+        config, time_budget_s=None, baseline=None, strategies=(config.strategy("eps-greedy-0.015"),)
+    )
     times = []
     with tempfile.TemporaryDirectory() as folder:
         for workers in (1, 2):
@@ -82,8 +83,9 @@ def worker_speedup(runs: int, episodes: int) -> tuple[float, float, bool]:
     return times[0], times[1], same
 
 
-def memory_profile(episodes: int, every: int) -> list[float]:
-    """Resident memory (MB) of this process every ``every`` episodes of a long run."""
+def memory_profile(episodes: int, every: int) -> tuple[list[float], int, int]:
+    """Resident memory (MB) of this process every ``every`` episodes of a long run; also the
+    run's steps and its final number of leaves (the tree is what may grow)."""
     config = with_overrides(load_config("quick"), episodes=episodes)
     seeds = derive_seeds(run_seed(config.seed, 0))
     env = factory.make_env(config.env)
@@ -91,7 +93,7 @@ def memory_profile(episodes: int, every: int) -> list[float]:
     samples = [resident_memory_mb()]
     training = train(env, agent, episodes, env_seed=seeds.env, memory_every=every)
     env.close()
-    return samples + training.rss_mb
+    return samples + training.rss_mb, training.env_steps, agent.n_leaves
 
 
 def main() -> None:
@@ -109,7 +111,7 @@ def main() -> None:
         "--runs",
         type=int,
         default=4,
-        help="runs per strategy of the 1-vs-2-worker experiment (default: 4)",
+        help="runs of the 1-vs-2-worker experiment (default: 4)",
     )
     parser.add_argument(
         "--worker-episodes",
@@ -134,23 +136,23 @@ def main() -> None:
             f"({steps:,} steps in {wall:.1f} s, {args.episodes} episodes)"
         )
         print(
-            f"  vs target 20,000 steps/s/core: {rate / 20_000:.2f}x; agent share of the "
-            f"time: {1 - rate / bare:.0%}"
+            f"  vs target 20,000 steps/s/core: {rate / 20_000:.2f}x; vs the bare env: "
+            f"{rate / bare:.2f}x"
         )
     if args.only in (None, "workers"):
         one, two, same = worker_speedup(args.runs, args.worker_episodes)
         print(
-            f"experiment {args.runs} runs x 2 strategies x {args.worker_episodes} episodes: "
+            f"experiment {args.runs} runs x {args.worker_episodes} episodes: "
             f"1 worker {one:.1f} s, 2 workers {two:.1f} s, speed-up {one / two:.2f}x "
             f"(target 1.8x); identical CSVs: {same}"
         )
     if args.only in (None, "memory"):
         every = max(1, args.memory_episodes // 20)
-        samples = memory_profile(args.memory_episodes, every)
+        samples, steps, leaves = memory_profile(args.memory_episodes, every)
         half = len(samples) // 2
         print(
-            f"memory over {args.memory_episodes} episodes (MB every {every}): "
-            + " ".join(f"{m:.0f}" for m in samples)
+            f"memory over {args.memory_episodes} episodes, {steps:,} steps, {leaves} leaves at "
+            f"the end (MB every {every}): " + " ".join(f"{m:.0f}" for m in samples)
         )
         print(
             f"  first sample after start {samples[1]:.1f} MB, last {samples[-1]:.1f} MB; "

@@ -74,7 +74,7 @@ def figure4(bands: Mapping[str, Band], optimal: float, path: Path, window: int,
     axes.set_xlabel("episode")
     axes.set_ylabel(f"steps to goal ({window}-episode moving average)")
     axes.set_title(title or "Average steps to goal, mean over runs with 95% bootstrap band")
-    axes.legend(loc="upper right", fontsize="small")
+    axes.legend(loc="best", fontsize="small")
     return save(figure, path)
 
 

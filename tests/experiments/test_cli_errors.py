@@ -27,6 +27,7 @@ def _fails(argv: list[str], capsys: pytest.CaptureFixture[str]) -> str:
         (["train", "--mode", "wobbly"], "--mode"),
         (["train", "--episodes", "-3"], "--episodes"),
         (["frobnicate"], "frobnicate"),
+        (["experiment", "quick", "--address", "auto"], "--address"),
     ],
 )
 def test_bad_options_name_the_option(argv, named, capsys):
