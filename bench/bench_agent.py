@@ -3,8 +3,9 @@
 Runs the same trivial env twice, once with a fixed action cycle (the env's own cost) and once
 under ``TreeAgent.learn`` with a tree of 500 leaves (a balanced tree over the box, capped there
 with ``max_leaves`` so the split test still runs but the size stays put). The agent's cost is
-the difference. Each timing is the best of ``--repeats`` runs (the machine is shared). Prints
-agent steps per second and the ratio of the two runs' times. Results go in
+the difference. Times are this process's CPU time (``time.process_time``), not wall time, and
+each is the best of ``--repeats`` runs, because the machine is shared. Prints agent steps per
+second and the ratio of the two runs' times. Results go in
 docs/benchmarks.md, section "Agent".
 
     python bench/bench_agent.py [--steps 200000] [--leaves 500]
@@ -61,12 +62,12 @@ def env_only_seconds(steps: int, horizon: int) -> float:
     """Wall time of ``steps`` env steps with a fixed action cycle (no agent)."""
     env = TrivialEnv(horizon)
     env.reset()
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     for i in range(steps):
         _, _, _, truncated, _ = env.step((i // 3) % 4)
         if truncated:
             env.reset()
-    return time.perf_counter() - t0
+    return time.process_time() - t0
 
 
 def balanced_tree(agent: TreeAgent, leaves: int) -> None:
@@ -83,9 +84,9 @@ def agent_seconds(agent: Any, steps: int, horizon: int) -> tuple[float, int]:
     """Wall time and steps of ``agent.learn`` on the trivial env (whole episodes)."""
     env = TrivialEnv(horizon)
     episodes = max(1, steps // horizon)
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     history = agent.learn(env, episodes, reset_seed=0)
-    return time.perf_counter() - t0, sum(s.steps for s in history)
+    return time.process_time() - t0, sum(s.steps for s in history)
 
 
 def main() -> None:

@@ -1,10 +1,15 @@
 """Speed and memory of the bullet_maze env, against raw pybullet and Gymnasium-Robotics.
 
-One run prints steps per second through ``gymnasium.make`` for the kinematic and the dynamic
-mode, raw pybullet ``stepSimulation`` for the same substeps in the same world, and
-``PointMaze_UMaze-v3`` when gymnasium-robotics is installed (``pip install -e ".[bench]"``),
-with the ratios the targets are stated in; then the resident memory over many create/close
-cycles. Run: ``python bench/bench_env.py`` (``--quick`` for a short run).
+One run prints env steps per second through ``gymnasium.make`` (random actions, resets
+included) for the kinematic and the dynamic mode, raw pybullet ``stepSimulation`` for the same
+substeps in the same world, and ``PointMaze_UMaze-v3`` when gymnasium-robotics is installed
+(``pip install -e ".[bench]"``), with the ratios the targets are stated in; then the resident
+memory over many create/close cycles. The machine may be shared: rates are measured in CPU time of
+this process (``time.process_time``; everything here runs in one thread), so time spent waiting
+for a core does not count, and every measurement is repeated in rounds, interleaved with the
+others, the best round counting. ``--wall`` uses wall-clock time instead.
+
+Run: ``python bench/bench_env.py`` (``--quick`` for a smoke test).
 """
 
 from __future__ import annotations
@@ -29,58 +34,56 @@ def rss_mb() -> float:
     return pages * os.sysconf("SC_PAGE_SIZE") / 2**20
 
 
-def best_rate(run: Callable[[], None], steps: int, repeats: int) -> float:
-    """Steps per second of the fastest of ``repeats`` runs (the machine is shared)."""
-    best = 0.0
-    for _ in range(repeats):
-        start = time.perf_counter()
-        run()
-        best = max(best, steps / (time.perf_counter() - start))
-    return best
+CLOCK = time.process_time
+"""The clock of every rate: CPU time of this process, or wall time with ``--wall``."""
 
 
-def env_rate(env_id: str, steps: int, repeats: int, **kwargs: object) -> float:
-    """Random-action steps per second through ``gymnasium.make`` (resets included)."""
+def env_runner(env_id: str, steps: int, **kwargs: object) -> Callable[[], float]:
+    """A function timing ``steps`` random-action steps through ``gymnasium.make``."""
     env = gym.make(env_id, **kwargs)
-    env.reset(seed=0)
-    actions = list(np.random.default_rng(0).integers(0, 4, steps))
+    rng = np.random.default_rng(0)
     if env_id.startswith("PointMaze"):
-        actions = list(np.random.default_rng(0).uniform(-1.0, 1.0, (steps, 2)))
+        actions = list(rng.uniform(-1.0, 1.0, (steps, 2)).astype(np.float32))
+    else:
+        actions = list(rng.integers(0, 4, steps))
 
-    def run() -> None:
+    def run() -> float:
+        env.reset(seed=0)
+        start = CLOCK()
         for action in actions:
             _, _, terminated, truncated, _ = env.step(action)
             if terminated or truncated:
                 env.reset()
+        return steps / (CLOCK() - start)
 
-    rate = best_rate(run, steps, repeats)
-    env.close()
-    return rate
+    return run
 
 
-def raw_rate(steps: int, repeats: int, substeps: int) -> float:
-    """Env-step equivalents per second of bare ``stepSimulation`` calls in the env's world."""
-    env = bullet_maze.BulletMazeEnv(mode="dynamic", substeps=substeps)
+def raw_runner(steps: int) -> Callable[[], float]:
+    """Bare pybullet in the dynamic env's own world and settings: per env step, the disc's
+    velocity command for a random direction, then the same number of ``stepSimulation``."""
+    env = bullet_maze.BulletMazeEnv(mode="dynamic")
     env.reset(seed=0)
-    client = env.client_id
-    pb.resetBaseVelocity(env.robot.body_id, (1.0, 0.0, 0.0), physicsClientId=client)
+    client, body = env.client_id, env.robot.body_id
+    physics = env.physics
+    speed = (
+        env.task.step_size * bullet_maze.METRES_PER_UNIT / (physics.substeps * physics.time_step)
+    )
+    velocities = [
+        (speed * dx, speed * dy, 0.0)
+        for dx, dy in bullet_maze.actions.DIRECTIONS[np.random.default_rng(0).integers(0, 4, steps)]
+    ]
 
-    def run() -> None:
-        for _ in range(steps * substeps):
-            pb.stepSimulation(physicsClientId=client)
+    def run() -> float:
+        env.reset(seed=0)
+        start = CLOCK()
+        for velocity in velocities:
+            pb.resetBaseVelocity(body, velocity, (0.0, 0.0, 0.0), physicsClientId=client)
+            for _ in range(physics.substeps):
+                pb.stepSimulation(physicsClientId=client)
+        return steps / (CLOCK() - start)
 
-    rate = best_rate(run, steps, repeats)
-    env.close()
-    return rate
-
-
-def pointmaze_rate(steps: int, repeats: int) -> float | None:
-    try:
-        import gymnasium_robotics
-    except ImportError:
-        return None
-    gym.register_envs(gymnasium_robotics)
-    return env_rate("PointMaze_UMaze-v3", steps, repeats)
+    return run
 
 
 def memory_cycles(cycles: int, **kwargs: object) -> list[tuple[int, float]]:
@@ -101,39 +104,68 @@ def memory_cycles(cycles: int, **kwargs: object) -> list[tuple[int, float]]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--steps", type=int, default=20_000, help="steps per timed run")
-    parser.add_argument("--repeats", type=int, default=3, help="timed runs; the best counts")
+    parser.add_argument("--steps", type=int, default=20_000, help="kinematic steps per round")
+    parser.add_argument("--rounds", type=int, default=5, help="interleaved rounds; best counts")
     parser.add_argument("--cycles", type=int, default=1000, help="create/close cycles")
     parser.add_argument("--quick", action="store_true", help="a short run for a smoke test")
+    parser.add_argument("--wall", action="store_true", help="wall-clock time, not CPU time")
     args = parser.parse_args()
+    global CLOCK
+    if args.wall:
+        CLOCK = time.perf_counter
     if args.quick:
-        args.steps, args.repeats, args.cycles = 2000, 1, 50
-    substeps = bullet_maze.PhysicsParams().substeps
+        args.steps, args.rounds, args.cycles = 2000, 1, 50
+    steps, dyn = args.steps, args.steps // 5
 
-    kinematic = env_rate("BulletMaze-v0", args.steps, args.repeats)
-    dynamic = env_rate("BulletMaze-v0", args.steps // 4, args.repeats, mode="dynamic")
-    raw = raw_rate(args.steps // 4, args.repeats, substeps)
-    husky = env_rate("BulletMaze-v0", args.steps // 4, args.repeats, robot="husky")
-    pointmaze = pointmaze_rate(args.steps // 4, args.repeats)
-
-    print(f"steps per second through gymnasium.make, best of {args.repeats}, one process")
-    print(f"  kinematic (disc, paper)         {kinematic:10,.0f}")
-    print(f"  kinematic (husky, paper)        {husky:10,.0f}")
-    print(f"  dynamic (disc, {substeps} substeps)      {dynamic:10,.0f}")
-    print(f"  raw stepSimulation x {substeps}          {raw:10,.0f}")
-    print(f"  dynamic overhead: env step time / raw physics time = {raw / dynamic:.2f}"
-          f"  (target <= 1.25)")
-    if pointmaze is None:
-        print("  PointMaze_UMaze-v3: gymnasium-robotics not installed (pip install -e '.[bench]')")
+    runners: dict[str, Callable[[], float]] = {
+        "kinematic, disc": env_runner("BulletMaze-v0", steps),
+        "kinematic, husky": env_runner("BulletMaze-v0", steps, robot="husky"),
+        "kinematic, disc, corridors": env_runner("BulletMaze-corridors-v0", steps),
+        "dynamic, disc": env_runner("BulletMaze-v0", dyn, mode="dynamic"),
+        "raw stepSimulation, same substeps": raw_runner(dyn),
+        "dynamic, husky": env_runner(
+            "BulletMaze-v0", max(20, dyn // 100), mode="dynamic", robot="husky"
+        ),
+    }
+    try:
+        import gymnasium_robotics
+    except ImportError:
+        print(
+            "PointMaze_UMaze-v3 skipped: gymnasium-robotics is not installed "
+            "(pip install -e '.[bench]')"
+        )
     else:
-        print(f"  PointMaze_UMaze-v3 (MuJoCo)     {pointmaze:10,.0f}")
-        print(f"  kinematic / PointMaze = {kinematic / pointmaze:.1f}  (target >= 5)")
-        print(f"  dynamic / PointMaze   = {dynamic / pointmaze:.1f}  (target >= 1)")
+        gym.register_envs(gymnasium_robotics)
+        runners["PointMaze_UMaze-v3 (MuJoCo)"] = env_runner("PointMaze_UMaze-v3", dyn)
 
-    marks = memory_cycles(args.cycles)
-    print(f"resident memory over {args.cycles} gymnasium.make/reset/step/close cycles (MiB)")
-    print("  " + "  ".join(f"{i}: {mb:.1f}" for i, mb in marks))
-    print(f"  growth after the first 10 %: {marks[-1][1] - marks[1][1]:+.1f} MiB")
+    best = dict.fromkeys(runners, 0.0)
+    for _ in range(args.rounds):
+        for name, run in runners.items():
+            best[name] = max(best[name], run())
+
+    physics = bullet_maze.PhysicsParams()
+    clock = "wall-clock" if args.wall else "CPU"
+    print(
+        f"env steps per {clock} second through gymnasium.make, best of {args.rounds} rounds, "
+        f"one process (dynamic: {physics.substeps} substeps of {physics.time_step:.5f} s)"
+    )
+    for name, rate in best.items():
+        print(f"  {name:36s} {rate:10,.0f}")
+    overhead = best["raw stepSimulation, same substeps"] / best["dynamic, disc"]
+    print(f"  dynamic overhead: env step time / raw physics time = {overhead:.2f} (target <= 1.25)")
+    pointmaze = best.get("PointMaze_UMaze-v3 (MuJoCo)")
+    if pointmaze:
+        print(f"  kinematic / PointMaze = {best['kinematic, disc'] / pointmaze:.1f} (target >= 5)")
+        print(f"  dynamic / PointMaze   = {best['dynamic, disc'] / pointmaze:.2f} (target >= 1)")
+
+    for label, cycles, kwargs in (
+        ("disc", args.cycles, {}),
+        ("husky", max(10, args.cycles // 5), {"robot": "husky"}),
+    ):
+        marks = memory_cycles(cycles, **kwargs)
+        print(f"resident memory (MiB) over {cycles} make/reset/step/close cycles, {label}:")
+        print("  " + "  ".join(f"{i}: {mb:.1f}" for i, mb in marks))
+        print(f"  growth after the first 10 %: {marks[-1][1] - marks[1][1]:+.1f} MiB")
 
 
 if __name__ == "__main__":

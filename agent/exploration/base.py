@@ -26,9 +26,9 @@ def greedy_action(q_row: list[float], rng: UniformSource) -> int:
     A draw is made only when there is a tie, so the draws depend on the values alone.
     """
     best = max(q_row)
+    if q_row.count(best) == 1:
+        return q_row.index(best)
     ties = [a for a, v in enumerate(q_row) if v == best]
-    if len(ties) == 1:
-        return ties[0]
     return ties[int(rng.random() * len(ties))]
 
 
