@@ -391,10 +391,12 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             pb.resetBaseVelocity(body, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), physicsClientId=client)
             self.robot.restore_joint_states(joints)
             return True
-        x, y, heading = self.robot.pose()
+        if self.robot.has_heading:
+            x, y, self._heading = self.robot.pose()
+        else:
+            x, y = self.robot.position()
         width, height = self.layout.arena
         self._x, self._y = min(max(x, 0.0), width), min(max(y, 0.0), height)
-        self._heading = heading
         return touched
 
     def _draw_noise(self) -> None:

@@ -163,6 +163,11 @@ class Robot(ABC):
         pb.resetBaseVelocity(self.body_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
                              physicsClientId=self.client)
 
+    def position(self) -> tuple[float, float]:
+        """(x, y) of the robot's base in maze units."""
+        x, y, _ = pb.getBasePositionAndOrientation(self.body_id, physicsClientId=self.client)[0]
+        return x / METRES_PER_UNIT, y / METRES_PER_UNIT
+
     def pose(self) -> tuple[float, float, float]:
         """(x, y, heading) of the robot's base in maze units and radians."""
         position, orientation = pb.getBasePositionAndOrientation(self.body_id,

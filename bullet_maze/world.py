@@ -28,7 +28,7 @@ GROUND_FRICTION = 1.0
 """Lateral friction coefficient of the floor (rubber on concrete); pybullet multiplies it with
 each robot link's own coefficient."""
 
-SAFE_REACH = 25.0
+SAFE_REACH = 50.0
 """Maze units: each sweep's first distance query looks this far, and the free disc it certifies
 (the "safe ball") lets the following moves that stay inside it skip pybullet altogether."""
 
@@ -203,7 +203,9 @@ class World:
         if length == 0.0:
             return not self.clear_within(x0, y0, 0.0)
         ux, uy = (x1 - x0) / length, (y1 - y0) / length
-        look = max(length, SAFE_REACH)
+        # A cell seen before has a ball too small for this move: near a solid, a query that
+        # looks no further than the move is cheaper and decides it as well.
+        look = length if ball is not None else max(length, SAFE_REACH)
         points = self._closest(x0, y0, look)
         gap = min((p[8] for p in points), default=math.inf) / METRES_PER_UNIT
         self._safe = (x0, y0, min(gap, look) - CONTACT_TOLERANCE)
