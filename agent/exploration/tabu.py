@@ -3,7 +3,9 @@
 A FIFO list of (leaf, action) pairs, appended when an epoch ends if not already listed; the
 oldest pair is released when the list is full. In the greedy choice a listed action's value is
 taken as -inf, so it is not chosen; the base strategy's random choice ignores the list (as the
-paper describes it). The capacity decreases with the number of successful episodes:
+paper describes the rule; ``random_respects_list=True`` reads the paper's "this action in Tabu
+list will not be selected" as covering the random choice too: uniform among the unlisted).
+The capacity decreases with the number of successful episodes:
 ``L_k = max(min_capacity, initial_capacity - floor(k / shrink_every))`` after k successes (the
 paper gives no numbers). When every action of a leaf is tabu the list is ignored for that choice
 (aspiration). When a leaf splits, its entries are dropped (``on_split="drop"``) or replaced in
@@ -15,7 +17,7 @@ from __future__ import annotations
 from collections import deque
 from typing import Any, Literal
 
-from agent.exploration.base import Exploration, UniformSource
+from agent.exploration.base import Exploration, UniformSource, greedy_action
 
 SplitPolicy = Literal["drop", "inherit"]
 _NEG_INF = float("-inf")
@@ -38,6 +40,7 @@ class Tabu(Exploration):
         shrink_every: int = 1,
         min_capacity: int = 0,
         on_split: SplitPolicy = "drop",
+        random_respects_list: bool = False,
     ) -> None:
         if not isinstance(base, Exploration):
             raise TypeError(f"tabu: base must be an Exploration, got {base!r}")
@@ -55,6 +58,7 @@ class Tabu(Exploration):
         self.shrink_every = shrink_every
         self.min_capacity = min_capacity
         self.on_split_policy: SplitPolicy = on_split
+        self.random_respects_list = bool(random_respects_list)
         self.successes = 0
         self._capacity = initial_capacity
         self._fifo: deque[tuple[int, int]] = deque()
@@ -85,6 +89,11 @@ class Tabu(Exploration):
         tabu = self._by_leaf.get(leaf)
         if tabu and len(tabu) < len(q_row):  # else aspiration: every action is tabu
             q_row = [_NEG_INF if a in tabu else v for a, v in enumerate(q_row)]
+            if self.random_respects_list:
+                if rng.random() < self.base.epsilon(leaf):
+                    allowed = [a for a in range(len(q_row)) if a not in tabu]
+                    return allowed[int(rng.random() * len(allowed))]
+                return greedy_action(q_row, rng)
         return self.base.select(leaf, q_row, rng)
 
     def update(self, leaf: int, action: int, delta_q: float) -> None:
@@ -145,6 +154,7 @@ class Tabu(Exploration):
             "shrink_every": self.shrink_every,
             "min_capacity": self.min_capacity,
             "on_split": self.on_split_policy,
+            "random_respects_list": self.random_respects_list,
         }
 
     def state_dict(self) -> dict[str, Any]:

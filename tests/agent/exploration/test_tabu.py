@@ -69,6 +69,16 @@ def test_random_choice_ignores_the_list() -> None:
     assert chosen == {0, 1, 2, 3}
 
 
+def test_random_choice_respects_the_list_when_asked() -> None:
+    tabu = Tabu(EpsilonGreedy(1.0), initial_capacity=10, random_respects_list=True)
+    tabu.bind(4)
+    tabu.on_epoch_end(0, 1)
+    tabu.on_epoch_end(0, 3)
+    rng = np.random.default_rng(0)
+    assert {tabu.select(0, [0.0, 3.0, 2.0, 1.0], rng) for _ in range(200)} == {0, 2}
+    assert {tabu.select(1, [0.0, 3.0, 2.0, 1.0], rng) for _ in range(200)} == {0, 1, 2, 3}
+
+
 def test_split_policy() -> None:
     drop = make(initial_capacity=10)
     keep = make(initial_capacity=10, on_split="inherit")
