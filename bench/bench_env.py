@@ -59,10 +59,10 @@ def env_runner(env_id: str, steps: int, **kwargs: object) -> Callable[[], float]
     return run
 
 
-def raw_runner(steps: int) -> Callable[[], float]:
+def raw_runner(steps: int, substeps: int) -> Callable[[], float]:
     """Bare pybullet in the dynamic env's own world and settings: per env step, the disc's
     velocity command for a random direction, then the same number of ``stepSimulation``."""
-    env = bullet_maze.BulletMazeEnv(mode="dynamic")
+    env = bullet_maze.BulletMazeEnv(mode="dynamic", substeps=substeps)
     env.reset(seed=0)
     client, body = env.client_id, env.robot.body_id
     physics = env.physics
@@ -116,13 +116,17 @@ def main() -> None:
     if args.quick:
         args.steps, args.rounds, args.cycles = 2000, 1, 50
     steps, dyn = args.steps, args.steps // 5
+    default = bullet_maze.PhysicsParams().substeps
 
     runners: dict[str, Callable[[], float]] = {
         "kinematic, disc": env_runner("BulletMaze-v0", steps),
         "kinematic, husky": env_runner("BulletMaze-v0", steps, robot="husky"),
         "kinematic, disc, corridors": env_runner("BulletMaze-corridors-v0", steps),
         "dynamic, disc": env_runner("BulletMaze-v0", dyn, mode="dynamic"),
-        "raw stepSimulation, same substeps": raw_runner(dyn),
+        "raw stepSimulation, same substeps": raw_runner(dyn, default),
+        f"dynamic, disc, {2 * default} substeps": env_runner(
+            "BulletMaze-v0", dyn, mode="dynamic", substeps=2 * default),
+        f"raw stepSimulation, {2 * default} substeps": raw_runner(dyn, 2 * default),
         "dynamic, husky": env_runner(
             "BulletMaze-v0", max(20, dyn // 100), mode="dynamic", robot="husky"
         ),

@@ -304,10 +304,9 @@ class HuskyRobot(Robot):
         """Wheel speeds for a forward speed (m/s) and a turn rate (rad/s)."""
         r = self.WHEEL_RADIUS * self.scale
         half_track = self.TRACK * self.scale / 2.0
-        left = np.clip((forward - turn * half_track) / r, -self.MAX_WHEEL_SPEED,
-                       self.MAX_WHEEL_SPEED)
-        right = np.clip((forward + turn * half_track) / r, -self.MAX_WHEEL_SPEED,
-                        self.MAX_WHEEL_SPEED)
+        top = self.MAX_WHEEL_SPEED
+        left = min(top, max(-top, (forward - turn * half_track) / r))
+        right = min(top, max(-top, (forward + turn * half_track) / r))
         pb.setJointMotorControlArray(
             self.body_id, self._wheels, pb.VELOCITY_CONTROL,
             targetVelocities=[left, left, right, right], forces=[self.WHEEL_FORCE] * 4,
@@ -334,9 +333,9 @@ class HuskyRobot(Robot):
                     remaining = distance - ((x - x0) * ux + (y - y0) * uy)
                     if remaining < self.DISTANCE_TOLERANCE and speed < self.SETTLED_SPEED:
                         break
-                    forward = float(np.clip(self.DRIVE_GAIN * remaining * METRES_PER_UNIT,
-                                            -self.MAX_SPEED, self.MAX_SPEED))
-                turn = float(np.clip(self.TURN_GAIN * error, -self.MAX_SPIN, self.MAX_SPIN))
+                    forward = min(self.MAX_SPEED, max(
+                        -self.MAX_SPEED, self.DRIVE_GAIN * remaining * METRES_PER_UNIT))
+                turn = min(self.MAX_SPIN, max(-self.MAX_SPIN, self.TURN_GAIN * error))
                 self._command(forward, turn)
                 pb.stepSimulation(physicsClientId=self.client)
                 substep += 1
