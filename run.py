@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import logging
 import math
 import sys
@@ -31,7 +30,7 @@ import numpy as np
 from experiments import config as config_module
 from experiments.backends import BACKENDS, default_workers, make_backend
 from experiments.config import ConfigError, ExperimentConfig, StrategySpec
-from experiments.seeding import derive_seeds, run_seed
+from experiments.seeding import run_seed
 
 DEFAULT_CONFIG = "quick"
 RESULTS_DIR = Path("results")
@@ -211,7 +210,6 @@ def _key_values(items: Sequence[str], option: str) -> dict[str, Any]:
     return values
 
 
-# ---------------------------------------------------------------------------- train
 
 
 def _train_setup(args: argparse.Namespace) -> tuple[ExperimentConfig, StrategySpec, int]:
@@ -246,82 +244,49 @@ def cmd_train(args: argparse.Namespace) -> int:
     """Train one agent with a progress bar, save it, print a summary."""
     from tqdm import tqdm
 
-    from experiments import factory, plots, store
-    from experiments.evaluation import greedy_episode
-    from experiments.partition import partition_figure
-    from experiments.training import train
+    from experiments.single_run import train_and_save
 
     config, strategy, seed = _train_setup(args)
-    maze_label = Path(config.env.maze).stem
-    out = args.out or RESULTS_DIR / f"{maze_label}__{strategy.name}__{seed}"
-    seeds = derive_seeds(seed)
-    factory.check_agent_params(config)
-    env = _make_env(config)
-    try:
-        agent = factory.make_agent(config, strategy, env, seeds.agent)
-        optimal = factory.optimal_steps(env)
-        budget = config.time_budget_s
-        print(f"training {strategy.name} in maze {config.env.maze!r} ({config.env.robot}, "
-              f"{config.env.mode}), seed {seed}: up to {config.episodes} episodes"
-              + (f" or {budget:g} s" if budget else "") + f"; optimal {optimal:g} steps")
-        recent: list[int] = []
-        with tqdm(total=config.episodes, unit="ep", disable=not args.progress,
-                  dynamic_ncols=True, mininterval=0.5) as bar:
-            def on_episode(row: store.EpisodeRow) -> None:
-                recent.append(row[1])
-                bar.update(1)
-                bar.set_postfix(avg_steps=f"{np.mean(recent[-100:]):.0f}", leaves=row[5],
-                                refresh=False)
-            training = train(env, agent, config.episodes, env_seed=seeds.env,
-                             time_budget_s=budget, on_episode=on_episode)
-        trajectory = greedy_episode(env, agent, seed=seeds.env)
-        layout, directions = factory.maze_geometry(env)
-    finally:
-        env.close()
-    rows = training.rows
-    out.mkdir(parents=True, exist_ok=True)
-    store.atomic_write_text(out / "episodes.csv", store.format_rows(rows))
-    store.atomic_write_text(out / "config.toml", config_module.dumps(
-        dataclasses.replace(config, episodes=len(rows) or 1)))
-    meta = {"strategy": strategy.name, "seed": seed, "env_seed": seeds.env,
-            "agent_seed": seeds.agent, "episodes": len(rows),
-            "stopped_by_time_budget": training.stopped_by_budget,
-            "wall_time_s": training.wall_time_s, "env_steps": training.env_steps,
-            "steps_per_second": training.steps_per_second, "optimal_steps": optimal,
-            "leaves": agent.n_leaves}
-    store.atomic_write_text(out / "meta.json", json.dumps(meta, indent=2) + "\n")
-    agent.save(out / "agent.npz")
-    steps = np.array([r[1] for r in rows])
-    plots.learning_curve(steps, np.array([r[5] for r in rows]), optimal,
-                         out / "learning_curve.png", window=config.smoothing_window,
-                         title=f"{strategy.name}, seed {seed}", cap=config.env.max_episode_steps)
-    partition_figure(agent, layout, directions, out / "partition.png",
-                     title=f"{strategy.name}: {agent.n_leaves} leaves, greedy actions; "
-                           f"greedy episode {trajectory.steps} steps",
-                     trajectory=trajectory.positions)
-    _print_training_summary(rows, training, optimal, agent.n_leaves, trajectory.steps,
-                            trajectory.success, out)
+    out = args.out or RESULTS_DIR / f"{Path(config.env.maze).stem}__{strategy.name}__{seed}"
+    budget = config.time_budget_s
+    recent: list[int] = []
+    with tqdm(total=config.episodes, unit="ep", disable=not args.progress, dynamic_ncols=True,
+              mininterval=0.5, delay=0.1) as bar:
+        def on_start(optimal: float) -> None:
+            bar.write(f"training {strategy.name} in maze {config.env.maze!r} "
+                      f"({config.env.robot}, {config.env.mode}), seed {seed}: up to "
+                      f"{config.episodes} episodes" + (f" or {budget:g} s" if budget else "")
+                      + f"; optimal {optimal:g} steps", file=sys.stdout)
+
+        def on_episode(row: tuple) -> None:
+            recent.append(row[1])
+            bar.update(1)
+            bar.set_postfix(avg_steps=f"{np.mean(recent[-100:]):.0f}", leaves=row[5],
+                            refresh=False)
+
+        result = train_and_save(config, seed, out, on_start, on_episode)
+    _print_training_summary(result)
     return 0
 
 
-def _print_training_summary(rows: list, training: Any, optimal: float, leaves: int,
-                            greedy_steps: int, greedy_success: bool, out: Path) -> None:
+def _print_training_summary(result: Any) -> None:
+    rows, training, optimal = result.training.rows, result.training, result.optimal_steps
     steps = np.array([r[1] for r in rows])
     success = np.array([r[3] for r in rows], dtype=bool)
-    last = slice(-100, None)
-    stop = ("stopped by the time budget" if training.stopped_by_budget
-            else "all episodes done")
+    last, count = slice(-100, None), min(100, len(rows))
+    stop = "stopped by the time budget" if training.stopped_by_budget else "all episodes done"
     print(f"\n{len(rows)} episodes in {training.wall_time_s:.1f} s ({stop}), "
           f"{training.steps_per_second:,.0f} steps/s (env + agent)")
     print(f"success rate: {success.mean():.1%} overall, {success[last].mean():.1%} in the "
-          f"last {min(100, len(rows))} episodes")
+          f"last {count} episodes")
     ratio = f" ({steps[last].mean() / optimal:.2f}x)" if optimal > 0 else ""
-    print(f"average steps, last {min(100, len(rows))} episodes: {steps[last].mean():.1f}"
-          f"{ratio} vs optimal {optimal:g}")
-    print(f"greedy policy: {'reached the goal' if greedy_success else 'did not reach the goal'}"
-          f" in {greedy_steps} steps")
-    print(f"leaves: {leaves}")
-    print(f"results: {out}/ (episodes.csv, learning_curve.png, partition.png, agent.npz)")
+    print(f"average steps, last {count} episodes: {steps[last].mean():.1f}{ratio} vs optimal "
+          f"{optimal:g}")
+    outcome = "reached the goal" if result.greedy.success else "did not reach the goal"
+    print(f"greedy policy: {outcome} in {result.greedy.steps} steps")
+    print(f"leaves: {result.leaves}")
+    print(f"results: {result.out}/ (episodes.csv, learning_curve.png, partition.png, "
+          "agent.npz)")
 
 
 def cmd_default(args: argparse.Namespace) -> int:
@@ -329,7 +294,6 @@ def cmd_default(args: argparse.Namespace) -> int:
     return cmd_train(args)
 
 
-# ---------------------------------------------------------------------------- experiment
 
 
 def cmd_experiment(args: argparse.Namespace) -> int:
@@ -402,7 +366,6 @@ def _print_experiment_summary(report: Any) -> None:
           f"{', '.join(p.name for p in report.figures)}; table: {report.summary_csv.name})")
 
 
-# ---------------------------------------------------------------------------- evaluate, render
 
 
 def _load_for_playback(args: argparse.Namespace) -> tuple[Any, ExperimentConfig, Path]:
@@ -432,7 +395,7 @@ def _playback_env(agent: Any, config: ExperimentConfig, render_mode: str | None 
     """The environment, projected to the agent's observation dimensions when it has more."""
     from experiments import factory
 
-    env = _make_env(config, render_mode)
+    env = factory.make_experiment_env(config, render_mode)
     dims = agent.observation_space.shape[0]
     if env.observation_space.shape[0] > dims:
         env = factory.ProjectObservation(env, dims)
@@ -493,15 +456,6 @@ def cmd_render(args: argparse.Namespace) -> int:
                max_frames=args.max_frames, title=f"{agent.n_leaves} leaves,")
     print(f"{out}: {episode.steps} steps, {outcome} ({config.env.robot}, {config.env.mode})")
     return 0
-
-
-def _make_env(config: ExperimentConfig, render_mode: str | None = None) -> Any:
-    from experiments import factory
-
-    try:
-        return factory.make_env(config.env, render_mode)
-    except (TypeError, ValueError) as error:
-        raise ConfigError(f"{config.source}: [env]: {error}") from None
 
 
 COMMANDS = {"default": cmd_default, "train": cmd_train, "experiment": cmd_experiment,

@@ -12,6 +12,7 @@ One small module per concern:
 - :mod:`experiments.statistics`: moving averages, bootstrap bands, convergence, IQM, P(improvement);
 - :mod:`experiments.plots`: learning curves and the Figure 4 analog;
 - :mod:`experiments.partition`: the learned partition drawn over the maze;
+- :mod:`experiments.evaluation`: greedy episodes of a trained agent;
 - :mod:`experiments.animation`: a GIF of one greedy episode;
 - :mod:`experiments.report`: the Markdown report of an experiment.
 

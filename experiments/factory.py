@@ -81,15 +81,18 @@ def check_agent_params(config: ExperimentConfig) -> None:
         make_exploration(config, strategy)
 
 
-def check_env(config: ExperimentConfig) -> float:
-    """Build the environment once (bad maze, robot or parameters fail here, by name).
-
-    Returns its optimal number of steps.
-    """
+def make_experiment_env(config: ExperimentConfig, render_mode: str | None = None) -> gym.Env:
+    """The experiment's environment; a bad maze, robot or parameter is a :class:`ConfigError`
+    naming the file's ``[env]`` table."""
     try:
-        env = make_env(config.env)
-    except (TypeError, ValueError, FileNotFoundError) as error:
+        return make_env(config.env, render_mode)
+    except (TypeError, ValueError, FileNotFoundError, gym.error.Error) as error:
         raise ConfigError(f"{config.source}: [env]: {error}") from None
+
+
+def check_env(config: ExperimentConfig) -> float:
+    """Build the environment once (bad settings fail here, by name); its optimal steps."""
+    env = make_experiment_env(config)
     try:
         return optimal_steps(env)
     finally:

@@ -10,7 +10,7 @@ an experiment skips every run whose CSV exists; a folder that holds a different 
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -133,7 +133,3 @@ def load_results(config: ExperimentConfig, out_dir: Path) -> dict[str, list[stor
             results[spec.strategy.name].append(store.read_run(run_dir, spec.name))
     return results
 
-
-def run_names(specs: Sequence[RunSpec]) -> list[str]:
-    """Names of the given runs."""
-    return [spec.name for spec in specs]

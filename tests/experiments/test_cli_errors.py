@@ -34,6 +34,20 @@ def test_bad_options_name_the_option(argv, named, capsys):
     assert named in _fails(argv, capsys)
 
 
+@pytest.mark.parametrize(
+    ("argv", "named"),
+    [
+        (["train", "--maze", "nosuchmaze", "--episodes", "1"], "nosuchmaze"),
+        (["train", "--strategy", "nope"], "nope"),
+        (["train", "--param", "epsilonn=0.1", "--episodes", "1"], "epsilonn"),
+        (["train", "--agent-param", "alpha=7", "--episodes", "1"], "alpha"),
+        (["evaluate", "no/such/agent.npz"], "no/such/agent.npz"),
+    ],
+)
+def test_bad_values_are_named(argv, named, capsys):
+    assert named in _fails(argv, capsys)
+
+
 def test_unknown_config_key_names_file_and_key(tmp_path: Path, capsys):
     path = tmp_path / "typo.toml"
     path.write_text(
