@@ -6,6 +6,7 @@ One small module per concern:
 - :mod:`experiments.seeding`: common random seeds derived with ``numpy.random.SeedSequence``;
 - :mod:`experiments.factory`: builds the environment and the agent of one run;
 - :mod:`experiments.training`: trains one agent and collects its per-episode statistics;
+- :mod:`experiments.single_run`: one agent trained, saved and pictured (``run.py train``);
 - :mod:`experiments.store`: per-run result files written atomically, and resume;
 - :mod:`experiments.backends`: serial, process-pool and Ray executors;
 - :mod:`experiments.runner`: runs an experiment (strategies x runs) on a backend;
