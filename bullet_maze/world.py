@@ -22,7 +22,8 @@ from bullet_maze.layout import MazeLayout
 from bullet_maze.params import BOUNDARY_THICKNESS, METRES_PER_UNIT, WALL_HEIGHT
 
 CONTACT_TOLERANCE = 1e-3
-"""Maze units: a robot closer than this to a solid surface touches it (a collision)."""
+"""Maze units: a robot closer than this to a solid surface touches it (a collision). A move
+that only grazes a solid between half this and this distance may pass as free."""
 
 GROUND_FRICTION = 1.0
 """Lateral friction coefficient of the floor (rubber on concrete); pybullet multiplies it with
@@ -32,9 +33,13 @@ SAFE_REACH = 50.0
 """Maze units: each sweep's first distance query looks this far, and the free disc it certifies
 (the "safe ball") lets the following moves that stay inside it skip pybullet altogether."""
 
-BALL_CELL = 5.0
-"""Maze units: side of the square cells under which safe balls are remembered. The solids
-never move, so a ball certified once stays valid for the life of the world."""
+CELL = 5.0
+"""Maze units: side of the square cells of the arena that each keep one pybullet query made at
+their centre (see ``World.sweep_collides``). The solids never move, so it stays valid."""
+
+CELL_REACH = 20.0
+"""Maze units: how far a cell's query looks; a certificate covers moves within this of the
+cell's centre (a cell's corner plus a step and its noise is less than 10)."""
 
 MAX_SWEEP_QUERIES = 256
 """Bound on the distance queries of one sweep; a sweep that needs more counts as a collision."""
@@ -64,7 +69,7 @@ class World:
         self.probe_id = self._build_probe(robot_radius)
         self._probe_xy = (math.nan, math.nan)
         self._safe = (math.nan, math.nan, -math.inf)  # centre x, y and radius of the safe ball
-        self._balls: dict[tuple[int, int], tuple[float, float, float]] = {}
+        self._cells: dict[tuple[int, int], _CellBounds | None] = {}
 
     def _build_ground(self) -> int:
         s, c = METRES_PER_UNIT, self.client
@@ -186,31 +191,30 @@ class World:
         so d(t) >= d + t (u . n) along the move direction u: the footprint may advance until the
         smallest such bound reaches the tolerance. A flat wall is passed or hit in one query, a
         move far from everything is cleared by the first, and no wall is skipped however thin.
-        The first query's free disc (the "safe ball") is remembered, the latest and the largest
-        per cell of the arena; moves inside one need no query at all.
+        Most moves need no query at all. The latest first query's free disc (the "safe ball")
+        is remembered, and each 5-unit cell of the arena keeps one query made at its centre c:
+        the same convexity bound, d(q) >= d + n . (q - c) for every piece it saw, and d(q) >
+        tolerance for the pieces it did not see while q is within ``CELL_REACH`` of c, clears
+        any move whose two ends satisfy them (the bound is linear along the move, so its ends
+        decide). A move the cached bounds cannot clear gets the queries above.
         """
         cx, cy, safe = self._safe
         if math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x0 - cx, y0 - cy) <= safe:
             return False  # both ends, hence the whole segment, inside a certified free disc
-        cell = (int(x0 // BALL_CELL), int(y0 // BALL_CELL))
-        ball = self._balls.get(cell)
-        if ball is not None:
-            cx, cy, safe = ball
-            if math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x0 - cx, y0 - cy) <= safe:
-                self._safe = ball
-                return False
+        cell = (int(x0 // CELL), int(y0 // CELL))
+        bounds = self._cells.get(cell, _UNSEEN)
+        if bounds is _UNSEEN:
+            bounds = self._cells[cell] = self._cell_bounds(cell)
+        if bounds is not None and bounds.clear(x0, y0, x1, y1):
+            return False
         length = math.hypot(x1 - x0, y1 - y0)
         if length == 0.0:
             return not self.clear_within(x0, y0, 0.0)
         ux, uy = (x1 - x0) / length, (y1 - y0) / length
-        # A cell seen before has a ball too small for this move: near a solid, a query that
-        # looks no further than the move is cheaper and decides it as well.
-        look = length if ball is not None else max(length, SAFE_REACH)
+        look = max(length, SAFE_REACH)
         points = self._closest(x0, y0, look)
         gap = min((p[8] for p in points), default=math.inf) / METRES_PER_UNIT
         self._safe = (x0, y0, min(gap, look) - CONTACT_TOLERANCE)
-        if ball is None or self._safe[2] > ball[2]:
-            self._balls[cell] = self._safe
         travelled = 0.0
         for _ in range(MAX_SWEEP_QUERIES):
             advance = math.inf
@@ -221,13 +225,27 @@ class World:
                 normal = point[7]
                 rate = ux * normal[0] + uy * normal[1]
                 if rate < 0.0:
-                    advance = min(advance, (distance - CONTACT_TOLERANCE) / -rate)
+                    # Aim half-way into the tolerance band, so that a move into a wall ends
+                    # with one more query instead of creeping up to the band's edge.
+                    advance = min(advance, (distance - CONTACT_TOLERANCE / 2) / -rate)
             travelled += advance
             if travelled >= length:
                 return False
             points = self._closest(x0 + travelled * ux, y0 + travelled * uy,
                                    length - travelled)
         return True
+
+    def _cell_bounds(self, cell: tuple[int, int]) -> _CellBounds | None:
+        """One query at the cell's centre; None if the centre is too close to a solid for its
+        bounds to clear anything."""
+        cx, cy = (cell[0] + 0.5) * CELL, (cell[1] + 0.5) * CELL
+        pieces = []
+        for point in self._closest(cx, cy, CELL_REACH):
+            distance = point[8] / METRES_PER_UNIT
+            if distance < CONTACT_TOLERANCE:
+                return None
+            pieces.append((distance, point[7][0], point[7][1]))
+        return _CellBounds(cx, cy, tuple(pieces))
 
     def _closest(self, x: float, y: float, reach: float) -> list[tuple]:
         """pybullet's closest points between the footprint at (x, y) and every solid piece
@@ -247,3 +265,29 @@ class World:
         """``touching`` after a fresh collision detection of the current poses."""
         pb.performCollisionDetection(physicsClientId=self.client)
         return self.touching(body_id)
+
+
+class _CellBounds:
+    """Lower bounds on the footprint's distance to every solid around a cell's centre."""
+
+    __slots__ = ("cx", "cy", "pieces")
+
+    def __init__(self, cx: float, cy: float,
+                 pieces: tuple[tuple[float, float, float], ...]) -> None:
+        self.cx, self.cy = cx, cy
+        self.pieces = pieces  # (distance at the centre, normal x, normal y) per convex piece
+
+    def clear(self, x0: float, y0: float, x1: float, y1: float) -> bool:
+        """Whether the bounds prove the move from (x0, y0) to (x1, y1) free."""
+        ax, ay, bx, by = x0 - self.cx, y0 - self.cy, x1 - self.cx, y1 - self.cy
+        if math.hypot(ax, ay) > CELL_REACH or math.hypot(bx, by) > CELL_REACH:
+            return False
+        for distance, nx, ny in self.pieces:
+            if (distance + nx * ax + ny * ay < CONTACT_TOLERANCE
+                    or distance + nx * bx + ny * by < CONTACT_TOLERANCE):
+                return False
+        return True
+
+
+_UNSEEN = _CellBounds(math.nan, math.nan, ())
+"""Marks a cell not queried yet (distinct from None, a cell whose bounds are useless)."""
