@@ -65,7 +65,10 @@ def load_agent(path: str | PathLike[str]) -> SMDPAgent:
     from agent.partition_tree import PartitionTree
     from agent.tree_agent import TreeAgent
 
-    with np.load(Path(path), allow_pickle=False) as data:
+    path = Path(path)
+    if not path.exists() and path.with_name(path.name + ".npz").exists():
+        path = path.with_name(path.name + ".npz")  # np.savez added the suffix
+    with np.load(path, allow_pickle=False) as data:
         arrays = {k: data[k] for k in data.files}
     if "metadata" not in arrays:
         raise ValueError(f"{path}: not an agent file (no 'metadata' entry)")

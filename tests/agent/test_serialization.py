@@ -63,6 +63,13 @@ def test_file_is_plain_arrays_and_json(
     assert meta["config"]["split_min_samples"] == 100
 
 
+def test_suffix_is_optional(tmp_path: Path, make_corridor: Callable[..., gym.Env]) -> None:
+    agent = build("tree", make_corridor(), "greedy")
+    agent.save(tmp_path / "plain")
+    assert (tmp_path / "plain.npz").is_file()
+    assert TreeAgent.load(tmp_path / "plain").q == agent.q
+
+
 def test_loading_the_wrong_kind_or_file_fails(
     tmp_path: Path, make_corridor: Callable[..., gym.Env]
 ) -> None:
