@@ -285,6 +285,7 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             reward = self.task.step_reward
         if self.render_mode == "human":
             self._sync_body()
+            self.world.park_probe()
         info = {"collision": collided, "distance_to_goal": distance, "is_success": success}
         return self._observation(), reward, success, False, info
 
@@ -317,6 +318,7 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         if self._client < 0:
             raise RuntimeError("render() called on a closed BulletMazeEnv")
         self._sync_body()
+        self.world.park_probe()
         if self.render_mode == "rgb_array":
             return self._camera.render(self._client)
         return None

@@ -154,6 +154,14 @@ class World:
         pb.restoreState(state_id, physicsClientId=self.client)
         self._probe_xy = (math.nan, math.nan)
 
+    def park_probe(self) -> None:
+        """Move the probe under the floor, out of sight of cameras (pybullet draws the collision
+        shape of a body that has no visual shape)."""
+        below = (0.0, 0.0, -WALL_HEIGHT * METRES_PER_UNIT)
+        pb.resetBasePositionAndOrientation(self.probe_id, below, _IDENTITY,
+                                           physicsClientId=self.client)
+        self._probe_xy = (math.nan, math.nan)
+
     def place_probe(self, x: float, y: float) -> None:
         """Put the probe's centre at (x, y) in maze units."""
         if (x, y) != self._probe_xy:
