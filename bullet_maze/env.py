@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import logging
 import math
@@ -334,7 +335,10 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
                 logger.debug("pybullet client %d was already disconnected", client)
 
     def __del__(self) -> None:
-        self.close()
+        # An env dropped without close() must not keep its pybullet client (about 150 MB); at
+        # interpreter shutdown pybullet may already be gone.
+        with contextlib.suppress(Exception):
+            self.close()
 
     # -- The physical limit ----------------------------------------------------------------
 

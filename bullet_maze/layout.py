@@ -18,6 +18,7 @@ import numpy as np
 
 from assets import MAZE_DIR
 from bullet_maze.geometry import clearance
+from bullet_maze.planning import goal_reachable
 
 DEFAULT_LAYOUT = "paper"
 """The layout of ``BulletMaze-v0``: section V.A's maze as closely as its text allows."""
@@ -149,8 +150,6 @@ class MazeLayout:
             raise ValueError(
                 f"{src}: field 'start.position' = {self.start}: a robot of radius {radius} "
                 f"there overlaps a wall or an obstacle (clearance {start_clearance:.2f})")
-        from bullet_maze.planning import goal_reachable
-
         if not goal_reachable(self, radius):
             raise ValueError(f"{src}: field 'goal' at {self.goal} (radius {self.goal_radius}) "
                              f"cannot be reached from the start by a robot of radius {radius}")

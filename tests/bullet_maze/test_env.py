@@ -3,6 +3,7 @@ pybullet client clean-up."""
 
 from __future__ import annotations
 
+import gc
 import math
 import warnings
 from collections.abc import Callable
@@ -231,3 +232,11 @@ def test_many_envs_in_one_process_are_independent() -> None:
     finally:
         for env in envs:
             env.close()
+
+
+def test_an_env_dropped_without_close_disconnects() -> None:
+    env = BulletMazeEnv()
+    client = env.client_id
+    del env
+    gc.collect()
+    assert not pb.isConnected(physicsClientId=client)
