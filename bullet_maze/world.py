@@ -8,8 +8,9 @@ y map to world x and y, z is up. The world holds
   (grey cylinders, section V.A), merged into a single compound shape so that one query covers
   them all;
 * visual-only markers: the green start square and the red goal circle (section V.A);
-* a collision probe: an invisible cylinder of the robot's footprint radius, moved along a step
-  to test it (``sweep_collides``). It is filtered out of the physics simulation.
+* a collision probe: a cylinder of the robot's footprint radius with no visual shape, moved
+  along a step to test it (``sweep_collides``). It is filtered out of the physics simulation;
+  cameras would draw its collision shape, so it is parked under the floor before rendering.
 """
 
 from __future__ import annotations
