@@ -17,6 +17,7 @@ import ctypes
 import math
 import os
 import sys
+import tempfile
 from abc import ABC, abstractmethod
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -55,40 +56,51 @@ def wrap_angle(angle: float) -> float:
 
 
 @contextmanager
-def _native_output_silenced() -> Iterator[None]:
-    """Silence what C code writes to the process's stdout and stderr (pybullet's URDF importer
-    warns there about every link without inertial data, once per load)."""
-    libc = ctypes.CDLL(None)
+def _native_output_captured() -> Iterator[list[str]]:
+    """Capture what C code writes to the process's stdout and stderr (pybullet's URDF importer
+    warns there about every link without inertial data, once per load, and explains its
+    failures there). The yielded list receives the text when the block ends."""
+    captured: list[str] = []
     try:
+        libc = ctypes.CDLL(None)  # the C library already loaded (not available on Windows)
         sys.stdout.flush()
         sys.stderr.flush()
         saved = [os.dup(1), os.dup(2)]
-    except (AttributeError, OSError, ValueError):  # no real file descriptors: leave them be
-        yield
+    except (AttributeError, OSError, TypeError, ValueError):  # no C library or no real fds
+        yield captured
         return
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    try:
-        os.dup2(devnull, 1)
-        os.dup2(devnull, 2)
-        yield
-    finally:
-        libc.fflush(None)
-        os.dup2(saved[0], 1)
-        os.dup2(saved[1], 2)
-        for fd in (*saved, devnull):
-            os.close(fd)
+    with tempfile.TemporaryFile() as sink:
+        try:
+            os.dup2(sink.fileno(), 1)
+            os.dup2(sink.fileno(), 2)
+            yield captured
+        finally:
+            libc.fflush(None)
+            os.dup2(saved[0], 1)
+            os.dup2(saved[1], 2)
+            for fd in saved:
+                os.close(fd)
+            sink.seek(0)
+            captured.append(sink.read().decode(errors="replace"))
 
 
 def load_urdf(client: int, path: Path, scale: float = 1.0) -> int:
     """Load a URDF at the origin; a clear error naming the path instead of a pybullet one."""
     if not path.is_file():
         raise FileNotFoundError(f"robot URDF not found: {path}")
-    try:
-        with _native_output_silenced():
-            return pb.loadURDF(str(path), [0.0, 0.0, 0.0], globalScaling=scale,
+    with _native_output_captured() as output:
+        try:
+            body = pb.loadURDF(str(path), [0.0, 0.0, 0.0], globalScaling=scale,
                                physicsClientId=client)
-    except pb.error as err:
-        raise ValueError(f"robot URDF {path} could not be loaded by pybullet: {err}") from err
+        except pb.error as err:
+            failure: pb.error | None = err
+        else:
+            failure = None
+    if failure is not None:
+        detail = " ".join("".join(output).split())[-300:]
+        raise ValueError(f"robot URDF {path} could not be loaded by pybullet: {failure}"
+                         + (f" ({detail})" if detail else "")) from failure
+    return body
 
 
 def footprint(client: int, body: int) -> tuple[float, float]:
