@@ -30,6 +30,8 @@ class Training:
 
     rows: list[EpisodeRow] = field(default_factory=list)
     wall_time_s: float = 0.0
+    cpu_time_s: float = 0.0
+    """CPU time of this process while learning (wall time minus waiting for a shared core)."""
     stopped_by_budget: bool = False
     rss_mb: list[float] = field(default_factory=list)
     """Resident memory of this process every ``memory_every`` episodes (MB)."""
@@ -71,7 +73,7 @@ def train(env: gym.Env, agent: Any, episodes: int, env_seed: int | None = None,
     reproducible only up to where it stopped.
     """
     training = Training()
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
 
     def callback(stats: Any) -> bool:
         row = episode_row(stats, len(training.rows) + 1)
@@ -87,6 +89,7 @@ def train(env: gym.Env, agent: Any, episodes: int, env_seed: int | None = None,
 
     agent.learn(env, episodes, callback=callback, reset_seed=env_seed)
     training.wall_time_s = time.perf_counter() - start
+    training.cpu_time_s = time.process_time() - cpu_start
     return training
 
 
@@ -109,6 +112,7 @@ def train_run(spec: RunSpec) -> RunResult:
         rows=tuple(training.rows), wall_time_s=training.wall_time_s,
         env_steps=training.env_steps, optimal_steps=optimal,
         meta={"env_seed": seeds.env, "agent_seed": seeds.agent, "pid": os.getpid(),
+              "cpu_time_s": training.cpu_time_s,
               "rss_mb_start": rss_start, "rss_mb": training.rss_mb,
               "rss_mb_every_episodes": memory_every},
     )

@@ -116,7 +116,7 @@ def test_same_seed_same_training(trained, tmp_path: Path):
 def test_default_job_runs_the_quick_config(tmp_path: Path, monkeypatch, capsys):
     (tmp_path / "q.toml").write_text(
         (ROOT / "experiments" / "quick.toml").read_text()
-        .replace("episodes = 2000", "episodes = 3")
+        .replace("episodes = 4000", "episodes = 3")
         .replace("max_episode_steps = 5000", "max_episode_steps = 100"))
     monkeypatch.setattr(run, "DEFAULT_CONFIG", str(tmp_path / "q.toml"))
     monkeypatch.setattr(run, "RESULTS_DIR", tmp_path / "results")
