@@ -186,7 +186,7 @@ def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys):
 
 
 def test_experiment_resumes_after_a_kill(tmp_path: Path):
-    config = tiny_config(tmp_path, episodes=20, cap=200, runs=3)
+    config = tiny_config(tmp_path, episodes=30, cap=300, runs=3)
     out = tmp_path / "killed"
     command = [sys.executable, str(ROOT / "run.py"), "experiment", str(config), "--backend",
                "serial", "--no-progress", "--out", str(out)]
