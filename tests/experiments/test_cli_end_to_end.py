@@ -148,12 +148,26 @@ def test_evaluate_in_dynamic_mode_with_the_husky(trained, capsys):
 
 
 def test_evaluate_reports_success_and_steps(trained, capsys):
+    from experiments import factory
+    from experiments.config import load_config, with_overrides
+    from experiments.evaluation import evaluate
+
     out, _ = trained
     assert run.main(["evaluate", str(out / "agent.npz"), "--episodes", "2",
                      "--max-episode-steps", "50"]) == 0
     printed = capsys.readouterr().out
     assert "2 greedy episodes" in printed
-    assert "success rate:" in printed
+    agent = factory.load_agent(out / "agent.npz")
+    config = with_overrides(load_config(out / "config.toml"), max_episode_steps=50)
+    env = factory.make_env(config.env)
+    result = evaluate(env, agent, 2, seed=0)
+    env.close()
+    assert f"success rate: {result.success_rate:.1%}" in printed
+    assert f"mean {result.steps.mean():.1f}" in printed
+    for episode in result.episodes:
+        assert episode.positions.shape == (episode.steps + 1, 2)
+        assert episode.steps <= 50
+        assert episode.success or episode.truncated
 
 
 def test_render_writes_a_gif(trained, tmp_path: Path):
