@@ -97,7 +97,10 @@ def test_train_writes_its_folder(trained):
         steps = int(row["steps"])
         assert 1 <= steps <= 150
         assert row["success"] in {"0", "1"}
-        assert (row["truncated"] == "1") == (steps == 150 and row["success"] == "0")
+        if row["truncated"] == "1":
+            assert steps == 150
+        if steps < 150:
+            assert row["success"] == "1"
         assert int(row["leaves"]) >= 1
         assert -2.0 * steps <= float(row["return"]) <= 5.0
     assert_png(out / "learning_curve.png")
