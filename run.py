@@ -85,7 +85,7 @@ def build_parser() -> argparse.ArgumentParser:
                             "run <strategy>__<seed> is reproduced by --strategy and --seed")
     train.add_argument("--episodes", type=_positive, metavar="N",
                        help="episodes to train (default: the config's)")
-    train.add_argument("--time-budget", type=float, metavar="SECONDS",
+    train.add_argument("--time-budget", type=_seconds, metavar="SECONDS",
                        help="stop after the episode that passes this wall time (default: the "
                             "config's time_budget_s; 0: no budget)")
     _add_env_options(train)
@@ -189,6 +189,16 @@ def _non_negative(text: str) -> int:
     return value
 
 
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not value >= 0:  # also rejects NaN
+        raise argparse.ArgumentTypeError(f"expected a number of seconds >= 0, got {text!r}")
+    return value
+
+
 def _integer(text: str) -> int:
     try:
         return int(text)
@@ -208,8 +218,6 @@ def _key_values(items: Sequence[str], option: str) -> dict[str, Any]:
         except tomllib.TOMLDecodeError:
             values[key.strip()] = raw
     return values
-
-
 
 
 def _train_setup(args: argparse.Namespace) -> tuple[ExperimentConfig, StrategySpec, int]:
@@ -294,8 +302,6 @@ def cmd_default(args: argparse.Namespace) -> int:
     return cmd_train(args)
 
 
-
-
 def cmd_experiment(args: argparse.Namespace) -> int:
     """Run (or resume) an experiment file in parallel, then write its report."""
     config = config_module.load_config(args.config)
@@ -364,8 +370,6 @@ def _print_experiment_summary(report: Any) -> None:
               f"{s.p_improvement:>8.2f}")
     print(f"\nreport: {report.markdown} (figures: "
           f"{', '.join(p.name for p in report.figures)}; table: {report.summary_csv.name})")
-
-
 
 
 def _load_for_playback(args: argparse.Namespace) -> tuple[Any, ExperimentConfig, Path]:

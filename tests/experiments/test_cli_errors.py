@@ -26,6 +26,8 @@ def _fails(argv: list[str], capsys: pytest.CaptureFixture[str]) -> str:
         (["experiment", "quick", "--backend", "gpu"], "--backend"),
         (["train", "--mode", "wobbly"], "--mode"),
         (["train", "--episodes", "-3"], "--episodes"),
+        (["train", "--time-budget", "-1"], "--time-budget"),
+        (["train", "--time-budget", "soon"], "--time-budget"),
         (["frobnicate"], "frobnicate"),
         (["experiment", "quick", "--address", "auto"], "--address"),
     ],
