@@ -28,6 +28,11 @@ class TreeConfig:
     """Initial Q-bar of every (leaf, action) of a fresh partition (not given by the paper)."""
     max_epoch_steps: int | None = 50
     """An epoch (section IV.A) ends after this many steps; None holds it until the leaf changes."""
+    hold_exploration: bool = True
+    """An exploratory (random) action is held across leaf boundaries until a collision, the end
+    of the episode or ``max_epoch_steps``; learning still sees one epoch per leaf crossed.
+    Not in the paper (False is the literal reading): without it the robot chatters across leaf
+    boundaries and most seeds never learn (docs/paper-notes.md, "Held exploration")."""
     end_epoch_on_collision: bool = True
     """An epoch also ends when the env reports a collision (``info[collision_key]``)."""
     collision_key: str = "collision"

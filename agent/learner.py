@@ -40,6 +40,10 @@ class SMDPAgent:
     (``config.end_epoch_on_collision``) or ``config.max_epoch_steps`` steps have passed. Then
     eq. (9) gives each input of the epoch its return, eq. (10) updates Q-bar(leaf, action), the
     strategy is told, and the partition receives the state-error pairs (and may split).
+
+    With ``config.hold_exploration`` an exploratory action (the strategy's random choice) is
+    held across leaf boundaries too; the run is then learnt as one epoch per leaf it crossed,
+    each bootstrapping from the next (:meth:`_end_held_run`).
     """
 
     kind = "smdp"
@@ -122,14 +126,18 @@ class SMDPAgent:
         cap = cfg.max_epoch_steps if cfg.max_epoch_steps is not None else 1 << 62
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
+        hold_exploration = cfg.hold_exploration
         ndarray = np.ndarray
 
         x = obs.tolist() if type(obs) is ndarray else [float(v) for v in obs]
         leaf = leaf_of(x)
         action = strategy.select(leaf, q[leaf], rng)
+        hold = hold_exploration and strategy.explored
         eps_sum = strategy.epsilon(leaf)
         xs: list[list[float]] = []
         rs: list[float] = []
+        held_leaves: list[int] = []  # leaf of each input of a held run
+        current = leaf
         steps = collisions = 0
         epochs = 1
         total = 0.0
@@ -140,6 +148,8 @@ class SMDPAgent:
             r = float(reward)
             xs.append(x)
             rs.append(r)
+            if hold:
+                held_leaves.append(current)
             steps += 1
             total += r
             x = obs.tolist() if type(obs) is ndarray else [float(v) for v in obs]
@@ -147,15 +157,26 @@ class SMDPAgent:
             if collided:
                 collisions += 1
             nxt = leaf_of(x)
+            current = nxt
             done = terminated or truncated
-            if done or nxt != leaf or len(rs) >= cap or (collided and end_on_collision):
-                bootstrap = 0.0 if terminated else max(q[nxt])
-                split = self._end_epoch(leaf, action, xs, rs, bootstrap)
+            if (
+                done
+                or (nxt != leaf and not hold)
+                or len(rs) >= cap
+                or (collided and end_on_collision)
+            ):
+                if hold:
+                    split = self._end_held_run(action, xs, rs, held_leaves, x, terminated)
+                    held_leaves = []
+                else:
+                    bootstrap = 0.0 if terminated else max(q[nxt])
+                    split = self._end_epoch(leaf, action, xs, rs, bootstrap)
                 if done:
                     break
-                leaf = leaf_of(x) if split else nxt
+                leaf = current = leaf_of(x) if split else nxt
                 q = self.q
                 action = strategy.select(leaf, q[leaf], rng)
+                hold = hold_exploration and strategy.explored
                 eps_sum += strategy.epsilon(leaf)
                 epochs += 1
                 xs = []
@@ -200,6 +221,42 @@ class SMDPAgent:
             return False
         self._grow(leaf, children)
         return True
+
+    def _end_held_run(
+        self,
+        action: int,
+        xs: list[list[float]],
+        rs: list[float],
+        leaves: list[int],
+        last_x: list[float],
+        terminated: bool,
+    ) -> bool:
+        """Learn a held exploratory run as one epoch per maximal stretch of inputs in one leaf.
+
+        Each stretch is an ordinary epoch of eqs. (9)-(10) whose V-bar(s') is the next
+        stretch's leaf (the last one bootstraps like any epoch). A split while the stretches
+        are learnt re-assigns the inputs not yet learnt to the new leaves. Returns whether any
+        leaf split.
+        """
+        leaf_of = self.partition.leaf_of
+        last_leaf = leaf_of(last_x)
+        any_split = False
+        start, n = 0, len(rs)
+        while start < n:
+            leaf = leaves[start]
+            end = start + 1
+            while end < n and leaves[end] == leaf:
+                end += 1
+            if end < n:
+                bootstrap = max(self.q[leaves[end]])
+            else:
+                bootstrap = 0.0 if terminated else max(self.q[last_leaf])
+            if self._end_epoch(leaf, action, xs[start:end], rs[start:end], bootstrap):
+                any_split = True
+                leaves[end:] = [leaf_of(x) for x in xs[end:]]
+                last_leaf = leaf_of(last_x)
+            start = end
+        return any_split
 
     def _grow(self, parent: int, children: tuple[int, int]) -> None:
         """Give the new leaves rows of Q-bar and counts (section IV.B, children of a split)."""

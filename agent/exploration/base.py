@@ -42,6 +42,9 @@ class Exploration:
 
     name: str = "exploration"
     n_actions: int = 0
+    explored: bool = False
+    """Whether the last :meth:`select` chose at random (an exploratory action): the learner may
+    hold such an action across leaf boundaries (``TreeConfig.hold_exploration``)."""
 
     def bind(self, n_actions: int) -> None:
         """Called once by the agent with the number of actions before any other hook."""
@@ -58,7 +61,9 @@ class Exploration:
         epsilon, else the greedy action of ``q_row`` (one draw, plus one per random action or tie).
         """
         if rng.random() < self.epsilon(leaf):
+            self.explored = True
             return int(rng.random() * len(q_row))
+        self.explored = False
         return greedy_action(q_row, rng)
 
     def update(self, leaf: int, action: int, delta_q: float) -> None:

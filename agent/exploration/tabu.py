@@ -91,10 +91,14 @@ class Tabu(Exploration):
             q_row = [_NEG_INF if a in tabu else v for a, v in enumerate(q_row)]
             if self.random_respects_list:
                 if rng.random() < self.base.epsilon(leaf):
+                    self.explored = True
                     allowed = [a for a in range(len(q_row)) if a not in tabu]
                     return allowed[int(rng.random() * len(allowed))]
+                self.explored = False
                 return greedy_action(q_row, rng)
-        return self.base.select(leaf, q_row, rng)
+        action = self.base.select(leaf, q_row, rng)
+        self.explored = self.base.explored
+        return action
 
     def update(self, leaf: int, action: int, delta_q: float) -> None:
         self.base.update(leaf, action, delta_q)
