@@ -105,8 +105,10 @@ class RayBackend:
         if ray.is_initialized():
             return False
         if self.address is None:
-            ray.init(num_cpus=self.workers, include_dashboard=False, log_to_driver=False,
-                     configure_logging=False)
+            # "local" starts a new instance even when a cluster started by `ray start` runs
+            # here (a bare ray.init() would join it).
+            ray.init(address="local", num_cpus=self.workers, include_dashboard=False,
+                     log_to_driver=False, configure_logging=False)
         else:
             ray.init(address=self.address, log_to_driver=False, configure_logging=False)
         return True
