@@ -19,6 +19,9 @@ from experiments.statistics import bootstrap_mean_band, moving_average
 Band = tuple[np.ndarray, np.ndarray, np.ndarray]
 """Mean curve, lower and upper bound of its confidence band."""
 
+_STYLES = ("-", "-.", ":")
+"""Line styles once the ten default colours have been used."""
+
 
 def save(figure: Figure, path: Path, dpi: int = 120) -> Path:
     """Write ``figure`` as a PNG through the Agg canvas."""
@@ -66,7 +69,7 @@ def figure4(bands: Mapping[str, Band], optimal: float, path: Path, window: int,
     for index, (name, (mean, low, high)) in enumerate(bands.items()):
         episodes = np.arange(1, mean.size + 1)
         color = f"C{index % 10}"
-        axes.plot(episodes, mean, color=color, linewidth=1.4,
+        axes.plot(episodes, mean, color=color, linewidth=1.4, linestyle=_STYLES[index // 10 % 3],
                   label=f"{name} (n={runs.get(name, 0)})")
         axes.fill_between(episodes, low, high, color=color, alpha=0.2, linewidth=0)
     _reference_lines(axes, optimal, cap)
