@@ -8,8 +8,11 @@ list will not be selected" as covering the random choice too: uniform among the 
 The capacity decreases with the number of successful episodes:
 ``L_k = max(min_capacity, initial_capacity - floor(k / shrink_every))`` after k successes (the
 paper gives no numbers). When every action of a leaf is tabu the list is ignored for that choice
-(aspiration). When a leaf splits, its entries are dropped (``on_split="drop"``) or replaced in
-place by the same actions of both children (``on_split="inherit"``).
+(aspiration). An action chosen because the greedy one is listed is reported as exploratory
+(``deviation_explores=True``), so the learner holds it like a random one
+(``TreeConfig.hold_exploration``). When a leaf splits, its entries are dropped
+(``on_split="drop"``) or replaced in place by the same actions of both children
+(``on_split="inherit"``).
 """
 
 from __future__ import annotations
@@ -41,6 +44,7 @@ class Tabu(Exploration):
         min_capacity: int = 0,
         on_split: SplitPolicy = "drop",
         random_respects_list: bool = False,
+        deviation_explores: bool = True,
     ) -> None:
         if not isinstance(base, Exploration):
             raise TypeError(f"tabu: base must be an Exploration, got {base!r}")
@@ -59,6 +63,7 @@ class Tabu(Exploration):
         self.min_capacity = min_capacity
         self.on_split_policy: SplitPolicy = on_split
         self.random_respects_list = bool(random_respects_list)
+        self.deviation_explores = bool(deviation_explores)
         self.successes = 0
         self._capacity = initial_capacity
         self._fifo: deque[tuple[int, int]] = deque()
@@ -87,17 +92,23 @@ class Tabu(Exploration):
 
     def select(self, leaf: int, q_row: list[float], rng: UniformSource) -> int:
         tabu = self._by_leaf.get(leaf)
-        if tabu and len(tabu) < len(q_row):  # else aspiration: every action is tabu
-            q_row = [_NEG_INF if a in tabu else v for a, v in enumerate(q_row)]
-            if self.random_respects_list:
-                if rng.random() < self.base.epsilon(leaf):
-                    self.explored = True
-                    allowed = [a for a in range(len(q_row)) if a not in tabu]
-                    return allowed[int(rng.random() * len(allowed))]
-                self.explored = False
-                return greedy_action(q_row, rng)
-        action = self.base.select(leaf, q_row, rng)
-        self.explored = self.base.explored
+        if not tabu or len(tabu) == len(q_row):  # nothing listed, or aspiration: all listed
+            action = self.base.select(leaf, q_row, rng)
+            self.explored = self.base.explored
+            return action
+        masked = [_NEG_INF if a in tabu else v for a, v in enumerate(q_row)]
+        if self.random_respects_list:
+            if rng.random() < self.base.epsilon(leaf):
+                self.explored = True
+                allowed = [a for a in range(len(q_row)) if a not in tabu]
+                return allowed[int(rng.random() * len(allowed))]
+            action = greedy_action(masked, rng)
+            explored = False
+        else:
+            action = self.base.select(leaf, masked, rng)
+            explored = self.base.explored
+        # The list turned the choice away from the greedy action: an exploratory action too.
+        self.explored = explored or (self.deviation_explores and q_row[action] < max(q_row))
         return action
 
     def update(self, leaf: int, action: int, delta_q: float) -> None:
@@ -159,6 +170,7 @@ class Tabu(Exploration):
             "min_capacity": self.min_capacity,
             "on_split": self.on_split_policy,
             "random_respects_list": self.random_respects_list,
+            "deviation_explores": self.deviation_explores,
         }
 
     def state_dict(self) -> dict[str, Any]:

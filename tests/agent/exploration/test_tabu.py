@@ -97,3 +97,19 @@ def test_bad_parameters() -> None:
         Tabu(Greedy(), shrink_every=0)
     with pytest.raises(TypeError, match="base"):
         Tabu("greedy")  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("deviation_explores", [True, False])
+def test_a_choice_turned_away_from_the_greedy_action_is_exploratory(
+    deviation_explores: bool,
+) -> None:
+    tabu = make(initial_capacity=5, deviation_explores=deviation_explores)
+    rng = np.random.default_rng(0)
+    q_row = [0.0, 2.0, 1.0, -1.0]
+    assert tabu.select(0, q_row, rng) == 1
+    assert tabu.explored is False
+    tabu.on_epoch_end(0, 1)  # the greedy action becomes tabu
+    assert tabu.select(0, q_row, rng) == 2
+    assert tabu.explored is deviation_explores
+    assert tabu.select(7, q_row, rng) == 1  # another leaf: nothing listed, greedy
+    assert tabu.explored is False
