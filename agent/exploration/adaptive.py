@@ -2,7 +2,10 @@
 
 After each update of eq. (10) in a leaf, that leaf's epsilon is recomputed from its action counts
 N(s, a) (one count per epoch that held the action) and the change Delta-Q that eq. (10) made.
-A leaf without counts has epsilon = 1 (the paper's initial value).
+A leaf without counts has epsilon = 1 (the paper's initial value). The children of a split
+inherit their parent's counts and epsilon (``inherit_on_split=True``): a child is part of a
+state whose exploration has already run its course; restarting every new leaf at epsilon = 1
+kept the growing tree exploring for ever (docs/paper-notes.md, item 5).
 """
 
 from __future__ import annotations
@@ -75,7 +78,7 @@ class AdaptiveEpsilon(Exploration):
         c_n: float = 0.001,
         c_h: float = 0.025,
         variant: Variant = "literal",
-        inherit_on_split: bool = False,
+        inherit_on_split: bool = True,
     ) -> None:
         if not c_n > 0.0:
             raise ValueError(f"adaptive: c_n must be > 0, got {c_n!r}")

@@ -7,11 +7,12 @@ paper describes the rule; ``random_respects_list=True`` reads the paper's "this 
 list will not be selected" as covering the random choice too: uniform among the unlisted).
 The capacity decreases with the number of successful episodes:
 ``L_k = max(min_capacity, initial_capacity - floor(k / shrink_every))`` after k successes (the
-paper gives no numbers). When every action of a leaf is tabu the list is ignored for that choice
-(aspiration). An action chosen because the greedy one is listed is reported as exploratory
-(``deviation_explores=True``), so the learner holds it like a random one
-(``TreeConfig.hold_exploration``). When a leaf splits, its entries are dropped
-(``on_split="drop"``) or replaced in place by the same actions of both children
+paper gives no numbers; the defaults shrink the list by one every 10 successes, because with one
+per success a few lucky early arrivals emptied it before anything was learnt). When every action
+of a leaf is tabu the list is ignored for that choice (aspiration). An action chosen because the
+greedy one is listed is reported as exploratory (``deviation_explores=True``), so the learner
+holds it like a random one (``TreeConfig.hold_exploration``). When a leaf splits, its entries
+are dropped (``on_split="drop"``) or replaced in place by the same actions of both children
 (``on_split="inherit"``).
 """
 
@@ -40,7 +41,7 @@ class Tabu(Exploration):
         self,
         base: Exploration,
         initial_capacity: int = 20,
-        shrink_every: int = 1,
+        shrink_every: int = 10,
         min_capacity: int = 0,
         on_split: SplitPolicy = "drop",
         random_respects_list: bool = False,

@@ -59,7 +59,8 @@ def test_eq5_cn_exponent_variant() -> None:
 
 
 def test_strategy_per_leaf_epsilon_and_split() -> None:
-    s = AdaptiveEpsilon()
+    assert AdaptiveEpsilon().inherit_on_split is True  # the default (docs/paper-notes.md, 5)
+    s = AdaptiveEpsilon(inherit_on_split=False)
     s.bind(4)
     assert s.epsilon(7) == 1.0
     for action in (0, 0, 0, 1):
