@@ -9,10 +9,14 @@ The capacity decreases with the number of successful episodes:
 ``L_k = max(min_capacity, initial_capacity - floor(k / shrink_every))`` after k successes (the
 paper gives no numbers; the defaults shrink the list by one every 10 successes, because with one
 per success a few lucky early arrivals emptied it before anything was learnt). When every action
-of a leaf is tabu the list is ignored for that choice (aspiration). An action chosen because the
-greedy one is listed is reported as exploratory (``deviation_explores=True``), so the learner
-holds it like a random one (``TreeConfig.hold_exploration``). When a leaf splits, its entries
-are dropped (``on_split="drop"``) or replaced in place by the same actions of both children
+of a leaf is tabu, every value is -inf and the argmax is a tie among all actions, broken at
+random (``all_listed="random"``, the default: an exploratory action); ``all_listed="greedy"`` is
+classic aspiration, the list ignored for that choice. Aspiration left a cycle over four big
+leaves, every action listed and every epsilon near 0, with nothing to explore (docs/results.md,
+paper_narrow). An action chosen because the greedy one is listed is reported as exploratory
+(``deviation_explores=True``), so the learner holds it like a random one
+(``TreeConfig.hold_exploration``). When a leaf splits, its entries are dropped
+(``on_split="drop"``) or replaced in place by the same actions of both children
 (``on_split="inherit"``).
 """
 
@@ -24,6 +28,7 @@ from typing import Any, Literal
 from agent.exploration.base import Exploration, UniformSource, greedy_action
 
 SplitPolicy = Literal["drop", "inherit"]
+AllListed = Literal["greedy", "random"]
 _NEG_INF = float("-inf")
 
 
@@ -46,6 +51,7 @@ class Tabu(Exploration):
         on_split: SplitPolicy = "drop",
         random_respects_list: bool = False,
         deviation_explores: bool = True,
+        all_listed: AllListed = "random",
     ) -> None:
         if not isinstance(base, Exploration):
             raise TypeError(f"tabu: base must be an Exploration, got {base!r}")
@@ -65,6 +71,9 @@ class Tabu(Exploration):
         self.on_split_policy: SplitPolicy = on_split
         self.random_respects_list = bool(random_respects_list)
         self.deviation_explores = bool(deviation_explores)
+        if all_listed not in ("greedy", "random"):
+            raise ValueError(f"tabu: all_listed must be 'greedy' or 'random', got {all_listed!r}")
+        self.all_listed: AllListed = all_listed
         self.successes = 0
         self._capacity = initial_capacity
         self._fifo: deque[tuple[int, int]] = deque()
@@ -93,6 +102,10 @@ class Tabu(Exploration):
 
     def select(self, leaf: int, q_row: list[float], rng: UniformSource) -> int:
         tabu = self._by_leaf.get(leaf)
+        if tabu and len(tabu) == len(q_row) and self.all_listed == "random":
+            # every value is -inf: the argmax is a tie among all actions, broken at random
+            self.explored = True
+            return int(rng.random() * len(q_row))
         if not tabu or len(tabu) == len(q_row):  # nothing listed, or aspiration: all listed
             action = self.base.select(leaf, q_row, rng)
             self.explored = self.base.explored
@@ -172,6 +185,7 @@ class Tabu(Exploration):
             "on_split": self.on_split_policy,
             "random_respects_list": self.random_respects_list,
             "deviation_explores": self.deviation_explores,
+            "all_listed": self.all_listed,
         }
 
     def state_dict(self) -> dict[str, Any]:

@@ -54,10 +54,27 @@ def test_tabu_actions_are_skipped_by_the_greedy_choice() -> None:
 
 
 def test_aspiration_when_every_action_is_tabu() -> None:
-    tabu = make(initial_capacity=10)
+    tabu = make(initial_capacity=10, all_listed="greedy")
     for a in range(4):
         tabu.on_epoch_end(0, a)
     assert tabu.select(0, [0.0, 3.0, 2.0, 1.0], np.random.default_rng(0)) == 1
+    assert tabu.explored is False
+
+
+def test_every_action_tabu_is_a_random_tie_by_default() -> None:
+    tabu = make(initial_capacity=10)
+    assert tabu.all_listed == "random"
+    for a in range(4):
+        tabu.on_epoch_end(0, a)
+    rng = np.random.default_rng(0)
+    picks = []
+    for _ in range(400):
+        picks.append(tabu.select(0, [0.0, 3.0, 2.0, 1.0], rng))
+        assert tabu.explored is True
+    counts = np.bincount(picks, minlength=4)
+    assert counts.min() > 60  # uniform over the four actions (100 expected each)
+    with pytest.raises(ValueError, match="all_listed"):
+        make(all_listed="first")
 
 
 def test_random_choice_ignores_the_list() -> None:
