@@ -2,11 +2,7 @@
 
 from __future__ import annotations
 
-from gymnasium import spaces
-
-from agent.config import TreeConfig
-from agent.exploration import Exploration
-from agent.learner import Bounds, SMDPAgent
+from agent.learner import SMDPAgent
 from agent.partition_tree import PartitionTree
 
 
@@ -22,17 +18,6 @@ class TreeAgent(SMDPAgent):
 
     kind = "tree"
     partition: PartitionTree
-
-    def __init__(
-        self,
-        observation_space: spaces.Space,
-        action_space: spaces.Space,
-        exploration: str | Exploration = "adaptive+tabu",
-        seed: int = 0,
-        config: TreeConfig | None = None,
-        bounds: Bounds | None = None,
-    ) -> None:
-        super().__init__(observation_space, action_space, exploration, seed, config, bounds)
 
     def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
         return PartitionTree(low, high, self.config)
