@@ -115,6 +115,10 @@ def build_parser() -> argparse.ArgumentParser:
     experiment.add_argument("--address", metavar="ADDRESS",
                             help="Ray cluster to join (e.g. auto, ray://host:10001); without it "
                                  "--backend ray starts a local instance")
+    experiment.add_argument("--only", type=_names, metavar="NAME[,NAME...]",
+                            help="compute only these strategies' runs (comma-separated names "
+                                 "from the file); the report covers every finished run, and a "
+                                 "later run without --only completes the experiment")
     experiment.add_argument("--report-only", action="store_true",
                             help="compute nothing; write the report of the finished runs")
     _add_output_options(experiment, "results/<name>[__<episodes>ep][__cap<N>]/")
@@ -173,6 +177,11 @@ def _add_output_options(parser: argparse.ArgumentParser, default: str) -> None:
                                                                  f"{default})")
     parser.add_argument("--no-progress", dest="progress", action="store_false",
                         help="no progress bar")
+
+
+def _names(text: str) -> list[str]:
+    """A comma-separated list of names (empty items dropped)."""
+    return [name.strip() for name in text.split(",") if name.strip()]
 
 
 def _positive(text: str) -> int:
@@ -319,11 +328,13 @@ def cmd_experiment(args: argparse.Namespace) -> int:
         factory.check_agent_params(config)
         optimal = factory.check_env(config)
         runner.prepare_folder(config, out)
-        todo = runner.pending_runs(config, out)
-        total = len(runner.plan(config))
+        only = runner.select_strategies(config, args.only)
+        todo = runner.pending_runs(config, out, only)
+        total = len([s for s in runner.plan(config) if only is None or s.strategy.name in only])
         workers = args.workers or default_workers()
         backend = make_backend(args.backend, workers, args.address)
-        print(f"{config.name}: {len(config.strategies)} strategies x {config.runs} runs x "
+        chosen = len(only) if only is not None else len(config.strategies)
+        print(f"{config.name}: {chosen} strategies x {config.runs} runs x "
               f"{config.episodes} episodes (cap {config.env.max_episode_steps}, optimal "
               f"{optimal:g} steps); {total - len(todo)} of {total} runs already done; "
               f"backend {args.backend}, {backend.workers} workers; results in {out}/")
@@ -333,7 +344,8 @@ def cmd_experiment(args: argparse.Namespace) -> int:
             def on_result(result: Any) -> None:
                 bar.update(1)
                 bar.set_postfix(last=result.name, steps_per_s=f"{result.steps_per_second:,.0f}")
-            computed = runner.run_experiment(config, out, backend, on_result=on_result)
+            computed = runner.run_experiment(config, out, backend, on_result=on_result,
+                                             only=only)
         elapsed = time.perf_counter() - start
         if computed:
             rate = sum(r.env_steps for r in computed) / sum(r.wall_time_s for r in computed)

@@ -10,7 +10,7 @@ an experiment skips every run whose CSV exists; a folder that holds a different 
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -70,10 +70,30 @@ def prepare_folder(config: ExperimentConfig, out_dir: Path) -> None:
     store.remove_stale_temporaries(out_dir / RUN_DIR)
 
 
-def pending_runs(config: ExperimentConfig, out_dir: Path) -> list[RunSpec]:
-    """The runs of ``config`` whose results are not in ``out_dir`` yet."""
+def select_strategies(config: ExperimentConfig, names: Collection[str] | None,
+                      option: str = "--only") -> frozenset[str] | None:
+    """Validate a subset of the experiment's strategy names (None: all of them)."""
+    if names is None:
+        return None
+    known = [spec.name for spec in config.strategies]
+    if not names:
+        raise ConfigError(f"option {option}: no strategy named; experiment {config.name!r} "
+                          f"has {', '.join(known)}")
+    unknown = [name for name in names if name not in known]
+    if unknown:
+        raise ConfigError(f"option {option}: unknown strategy {', '.join(map(repr, unknown))} "
+                          f"in experiment {config.name!r}; its strategies are "
+                          f"{', '.join(known)}")
+    return frozenset(names)
+
+
+def pending_runs(config: ExperimentConfig, out_dir: Path,
+                 only: Collection[str] | None = None) -> list[RunSpec]:
+    """The runs of ``config`` (of the strategies in ``only``, if given) not in ``out_dir`` yet."""
     run_dir = out_dir / RUN_DIR
-    return [spec for spec in plan(config) if not store.is_finished(run_dir, spec.name)]
+    return [spec for spec in plan(config)
+            if (only is None or spec.strategy.name in only)
+            and not store.is_finished(run_dir, spec.name)]
 
 
 def run_experiment(
@@ -82,12 +102,15 @@ def run_experiment(
     backend: Backend | None = None,
     task: Task | None = None,
     on_result: Callable[[store.RunResult], None] | None = None,
+    only: Collection[str] | None = None,
 ) -> list[store.RunResult]:
     """Run what is missing of ``config`` in ``out_dir``; returns the runs computed now.
 
     ``task`` computes one run (default: :func:`experiments.training.train_run`; tests pass a
     stand-in); it must be picklable for the process and Ray backends. ``on_result`` is called
-    in this process after each run has been stored.
+    in this process after each run has been stored. ``only`` restricts the computation to
+    some strategies (validated by :func:`select_strategies`); the folder stays the whole
+    experiment's, and the rest can be computed later into it.
     """
     if task is None:
         from experiments.training import train_run
@@ -95,7 +118,8 @@ def run_experiment(
         task = train_run
     backend = backend or SerialBackend()
     prepare_folder(config, out_dir)
-    todo = pending_runs(config, out_dir)
+    only = select_strategies(config, only)
+    todo = pending_runs(config, out_dir, only)
     log.info("%s: %d of %d runs to compute", config.name, len(todo), len(plan(config)))
     computed = []
     for result in backend.map_unordered(task, todo):

@@ -44,10 +44,12 @@ def test_bad_options_name_the_option(argv, named, capsys):
         (["train", "--param", "epsilonn=0.1", "--episodes", "1"], "epsilonn"),
         (["train", "--agent-param", "alpha=7", "--episodes", "1"], "alpha"),
         (["evaluate", "no/such/agent.npz"], "no/such/agent.npz"),
+        (["experiment", "quick", "--only", "eps-greedy-0.15", "--out", "{tmp}"],
+         "eps-greedy-0.15"),
     ],
 )
-def test_bad_values_are_named(argv, named, capsys):
-    assert named in _fails(argv, capsys)
+def test_bad_values_are_named(argv, named, capsys, tmp_path: Path):
+    assert named in _fails([a.replace("{tmp}", str(tmp_path)) for a in argv], capsys)
 
 
 def test_unknown_config_key_names_file_and_key(tmp_path: Path, capsys):

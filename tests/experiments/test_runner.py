@@ -68,6 +68,33 @@ def test_resume_computes_only_what_is_missing(small_config, standins, tmp_path: 
     assert (out / "episodes.csv").read_bytes().startswith(first.split(b"\n")[0])
 
 
+def test_only_computes_a_subset_and_the_rest_completes_later(
+        small_config, standins, tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    log = tmp_path / "computed.log"
+    monkeypatch.setenv("STANDIN_LOG", str(log))
+    out = tmp_path / "out"
+    first = runner.run_experiment(small_config, out, SerialBackend(), standins.fake_run,
+                                  only=["eps"])
+    assert {r.strategy for r in first} == {"eps"}
+    assert len(first) == 3
+    assert not (out / "episodes.csv").exists()
+    assert {name: len(runs) for name, runs in runner.load_results(small_config, out).items()} == {
+        "eps": 3, "adaptive+tabu": 0}
+    rest = runner.run_experiment(small_config, out, SerialBackend(), standins.fake_run)
+    assert {r.strategy for r in rest} == {"adaptive+tabu"}
+    assert len(rest) == 3
+    runner.run_experiment(small_config, tmp_path / "whole", SerialBackend(), standins.fake_run)
+    assert (out / "episodes.csv").read_bytes() == (
+        tmp_path / "whole" / "episodes.csv").read_bytes()
+
+
+@pytest.mark.parametrize("only", [["nope"], []])
+def test_only_names_unknown_strategies(small_config, standins, tmp_path: Path, only):
+    with pytest.raises(ConfigError, match=r"--only.*(nope|no strategy).*adaptive\+tabu"):
+        runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run,
+                              only=only)
+
+
 def test_a_folder_of_another_experiment_is_refused(small_config, standins, tmp_path: Path):
     runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run)
     other = with_overrides(small_config, episodes=60)
