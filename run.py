@@ -372,12 +372,13 @@ def _experiment_folder(file_config: ExperimentConfig, config: ExperimentConfig) 
 
 
 def _print_experiment_summary(report: Any) -> None:
-    print(f"\n{'strategy':<22} {'runs':>4} {'final steps':>11} {'/optimal':>8} "
+    width = max([len("strategy"), *(len(s.strategy) for s in report.summaries)])
+    print(f"\n{'strategy':<{width}} {'runs':>4} {'final steps':>11} {'/optimal':>8} "
           f"{'success':>7} {'converged':>9} {'P(impr.)':>8}")
     for s in report.summaries:
         final = float(np.mean(s.final_steps))
         ratio = final / report.optimal_steps if report.optimal_steps > 0 else math.nan
-        print(f"{s.strategy:<22} {s.runs:>4} {final:>11.1f} {ratio:>8.2f} "
+        print(f"{s.strategy:<{width}} {s.runs:>4} {final:>11.1f} {ratio:>8.2f} "
               f"{np.mean(s.success_rate):>7.1%} {s.converged_runs:>5}/{s.runs:<3} "
               f"{s.p_improvement:>8.2f}")
     print(f"\nreport: {report.markdown} (figures: "

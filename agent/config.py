@@ -14,6 +14,7 @@ from typing import Any, Literal
 
 ErrorBuffer = Literal["clear", "window"]
 RangeNormalization = Literal["root", "none"]
+SplitPointRule = Literal["quest", "midpoint"]
 
 
 @dataclass(frozen=True)
@@ -47,6 +48,10 @@ class TreeConfig:
     """State-error pairs per leaf: "clear" (emptied after each split test) or "window" (FIFO)."""
     range_normalization: RangeNormalization = "root"
     """range_i of eq. (12): the leaf's width divided by the root's ("root") or raw ("none")."""
+    split_point: SplitPointRule = "quest"
+    """Eq. (13): where the count-weighted group densities cross ("quest", Loh and Shih 1997,
+    the midpoint of the group means when they do not cross between them) or always the
+    midpoint of the two group means ("midpoint")."""
     inherit_q: bool = True
     """Children of a split start with the parent's Q-bar (else with q_init)."""
     reset_counts_on_split: bool = True
@@ -80,6 +85,7 @@ class TreeConfig:
                 raise ValueError(f"TreeConfig.{name} must be >= 0, got {value!r}")
         _check_choice("error_buffer", self.error_buffer, ("clear", "window"))
         _check_choice("range_normalization", self.range_normalization, ("root", "none"))
+        _check_choice("split_point", self.split_point, ("quest", "midpoint"))
         _check_range("min_leaf_fraction", self.min_leaf_fraction, 0.0, 0.5, low_open=True)
         if not isinstance(self.max_leaves, int) or self.max_leaves < 1:
             raise ValueError(f"TreeConfig.max_leaves must be an int >= 1, got {self.max_leaves!r}")

@@ -116,7 +116,7 @@ class PartitionTree:
         ranges = high - low
         if self.config.range_normalization == "root":
             ranges = ranges / self._root_width
-        choice = choose_split(inputs, errors, low, high, ranges, min_width)
+        choice = choose_split(inputs, errors, low, high, ranges, min_width, self.config.split_point)
         if choice is None:
             return None
         dim, value = choice

@@ -97,17 +97,27 @@ def density_crossing(
 
 
 def split_point(
-    positive: FloatArray, negative: FloatArray, low: float, high: float, margin: float
+    positive: FloatArray,
+    negative: FloatArray,
+    low: float,
+    high: float,
+    margin: float,
+    rule: str = "quest",
 ) -> float:
     """Eq. (13) in one dimension with its fallback, never outside the leaf.
 
-    The density crossing of :func:`density_crossing` (unbiased sample variances); without one, the
-    midpoint of the two means. The result is clipped to ``[low + margin, high - margin]`` so that
-    neither child is narrower than ``margin``.
+    ``rule="quest"``: the density crossing of :func:`density_crossing` (unbiased sample
+    variances); without one, the midpoint of the two means. ``rule="midpoint"``: always the
+    midpoint of the two means (the alternative reading). The result is clipped to
+    ``[low + margin, high - margin]`` so that neither child is narrower than ``margin``.
     """
     m1, m2 = float(positive.mean()), float(negative.mean())
-    v1, v2 = float(positive.var(ddof=1)), float(negative.var(ddof=1))
-    point = density_crossing(m1, v1, positive.shape[0], m2, v2, negative.shape[0])
+    point = None
+    if rule == "quest":
+        v1, v2 = float(positive.var(ddof=1)), float(negative.var(ddof=1))
+        point = density_crossing(m1, v1, positive.shape[0], m2, v2, negative.shape[0])
+    elif rule != "midpoint":
+        raise ValueError(f"split point rule must be 'quest' or 'midpoint', got {rule!r}")
     if point is None:
         point = 0.5 * (m1 + m2)
     return min(max(point, low + margin), high - margin)
@@ -120,11 +130,13 @@ def choose_split(
     high: FloatArray,
     ranges: FloatArray,
     min_width: FloatArray,
+    point_rule: str = "quest",
 ) -> tuple[int, float] | None:
     """Split dimension by eq. (12) and split point by eq. (13) for one leaf.
 
     Inputs with a positive error form g_1, those with a negative error g_2 (a zero error joins
     neither). Dimensions too narrow to leave two children of ``min_width`` are not eligible.
+    ``point_rule`` is passed to :func:`split_point`.
     Returns ``(dimension, value)`` or None when no dimension is eligible or a group has fewer than
     two samples.
     """
@@ -138,6 +150,11 @@ def choose_split(
     t = np.where(eligible, t, -np.inf)
     dim = int(np.argmax(t))
     value = split_point(
-        pos[:, dim], neg[:, dim], float(low[dim]), float(high[dim]), float(min_width[dim])
+        pos[:, dim],
+        neg[:, dim],
+        float(low[dim]),
+        float(high[dim]),
+        float(min_width[dim]),
+        point_rule,
     )
     return dim, value

@@ -45,6 +45,7 @@ def test_unbounded_observation_needs_bounds() -> None:
         ("max_epoch_steps", 0),
         ("error_buffer", "ring"),
         ("range_normalization", "leaf"),
+        ("split_point", "median"),
         ("max_leaves", 0),
         ("min_leaf_fraction", 0.7),
     ],

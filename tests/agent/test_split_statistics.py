@@ -63,6 +63,16 @@ def test_eq13_no_real_root_falls_back_to_clipped_midpoint() -> None:
     assert split_point(pos, neg, midpoint - 0.05, 10.0, 0.1) == pytest.approx(midpoint + 0.05)
 
 
+def test_midpoint_rule_ignores_the_density_crossing() -> None:
+    # counts 3:1 and equal variances (1): eq. (13) gives 1 + ln(3) / 2, the midpoint rule 1
+    pos = np.array([-1.0, 0.0, 1.0] * 3)  # 9 samples, mean 0, sample variance 0.75
+    neg = np.array([1.0, 2.0, 3.0])  # 3 samples, mean 2, sample variance 1
+    assert split_point(pos, neg, -10.0, 10.0, 0.1) > 1.2
+    assert split_point(pos, neg, -10.0, 10.0, 0.1, "midpoint") == pytest.approx(1.0)
+    with pytest.raises(ValueError, match="'median'"):
+        split_point(pos, neg, -10.0, 10.0, 0.1, "median")
+
+
 @pytest.mark.parametrize(
     ("n", "mean", "variance", "expected"),
     [
