@@ -31,6 +31,9 @@ logger = logging.getLogger(__name__)
 NOISE_BLOCK = 1024
 """Steps of noise drawn from ``np_random`` at once (one draw per step costs more than a step)."""
 
+_FAST_ACTION_TYPES = frozenset((int, np.int64))
+"""Action types ``step`` looks up without conversion (``bool`` is not one: it is refused)."""
+
 _TASK = TaskParams()
 _PHYSICS = PhysicsParams()
 
@@ -172,6 +175,7 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
                                      revert_on_collision, max_turn_substeps, max_drive_substeps)
         self.layout = load_layout(maze)
         self.mode = mode
+        self._kinematic = mode == "kinematic"
         self.render_mode = render_mode
         self._camera = TopDownCamera(self.layout.arena, render_width, render_height)
         self._client = -1
@@ -201,7 +205,14 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         self.observation_space = spaces.Box(np.array(low), np.array(high), dtype=np.float64)
         self.action_space = spaces.Discrete(len(DIRECTIONS))
 
-        self._moves = [(float(mx), float(my)) for mx, my in DIRECTIONS * self.task.step_size]
+        self._has_heading = self.robot.has_heading
+        self._human = render_mode == "human"
+        self._arena = self.layout.arena
+        self._moves = {action: (float(mx), float(my))
+                       for action, (mx, my) in enumerate(DIRECTIONS * self.task.step_size)}
+        self._goal_reward = self.task.goal_reward
+        self._collision_reward = self.task.collision_reward
+        self._step_reward = self.task.step_reward
         self._noise_std = self.task.noise_std
         self._noise: list[float] = []
         self._noise_index = 0
@@ -256,39 +267,46 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
     ) -> tuple[np.ndarray, SupportsFloat, bool, bool, dict[str, Any]]:
         if self._client < 0:
             raise RuntimeError("step() called on a closed BulletMazeEnv")
-        kind = type(action)
-        if (kind is not int and kind is not np.int64) or not 0 <= action < 4:
-            action = self._check_action(action)
-        mx, my = self._moves[action]
-        if self._noise_index >= len(self._noise):
+        # The hot path takes a Python or numpy int in range straight from the table of moves.
+        move = self._moves.get(action) if type(action) in _FAST_ACTION_TYPES else None
+        if move is None:
+            move = self._moves[self._check_action(action)]
+        i = self._noise_index
+        noise = self._noise
+        if i >= len(noise):
             self._draw_noise()
-        dx = mx + self._noise[self._noise_index]
-        dy = my + self._noise[self._noise_index + 1]
-        self._noise_index += 2
-        x0, y0 = self._x, self._y
-        if self.mode == "kinematic":
+            i, noise = 0, self._noise
+        self._noise_index = i + 2
+        dx = move[0] + noise[i]
+        dy = move[1] + noise[i + 1]
+        if self._kinematic:
+            x0, y0 = self._x, self._y
             collided = self.world.sweep_collides(x0, y0, x0 + dx, y0 + dy)
             if not collided:
                 self._x, self._y = x0 + dx, y0 + dy
-                if self.robot.has_heading:
+                if self._has_heading:
                     self._heading = math.atan2(dy, dx)
                 self._body_in_sync = False
         else:
             collided = self._dynamic_step(dx, dy)
 
-        distance = math.hypot(self._x - self._goal[0], self._y - self._goal[1])
+        x, y = self._x, self._y
+        gx, gy = self._goal
+        distance = math.hypot(x - gx, y - gy)
         success = distance <= self._goal_radius
         if collided:
-            reward = self.task.collision_reward
+            reward = self._collision_reward
         elif success:
-            reward = self.task.goal_reward
+            reward = self._goal_reward
         else:
-            reward = self.task.step_reward
-        if self.render_mode == "human":
+            reward = self._step_reward
+        if self._human:
             self._sync_body()
             self.world.park_probe()
         info = {"collision": collided, "distance_to_goal": distance, "is_success": success}
-        return self._observation(), reward, success, False, info
+        if self._has_heading:
+            return np.array((x, y, self._heading)), reward, success, False, info
+        return np.array((x, y)), reward, success, False, info
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -377,32 +395,40 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
     # -- Internals -----------------------------------------------------------------------
 
     def _dynamic_step(self, dx: float, dy: float) -> bool:
+        robot, world = self.robot, self.world
+        x0, y0 = self._x, self._y
         length = math.hypot(dx, dy)
-        reach = length + self.robot.reach_margin
-        if self.robot.has_heading:
-            near = not self.world.clear_within(self._x, self._y, reach)
+        reach = length + robot.reach_margin
+        if world.certified_clear(x0, y0, reach):
+            near = False
+        elif self._has_heading:
+            near = not world.clear_within(x0, y0, reach)
         else:
             # A holonomic body moves along its command and only friction shortens the move, so
-            # contacts need watching only if the commanded segment (a little longer) may touch.
+            # contacts need watching only if the commanded segment (a little longer) is not
+            # proved free. Physics decides the rest: an exact sweep would cost as much as
+            # watching the contacts, and most moves it would sweep end in a wall.
             stretch = reach / length if length > 0.0 else 0.0
-            near = self.world.sweep_collides(self._x, self._y, self._x + dx * stretch,
-                                             self._y + dy * stretch)
-        client, body = self._client, self.robot.body_id
-        if near and self.physics.revert_on_collision:
-            saved = pb.getBasePositionAndOrientation(body, physicsClientId=client)
-            joints = self.robot.joint_states()
-        touched = self.robot.drive(dx, dy, self.physics, self.world if near else None)
-        if touched and self.physics.revert_on_collision:
-            pb.resetBasePositionAndOrientation(body, *saved, physicsClientId=client)
-            pb.resetBaseVelocity(body, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), physicsClientId=client)
-            self.robot.restore_joint_states(joints)
-            return True
-        if self.robot.has_heading:
-            x, y, self._heading = self.robot.pose()
+            near = not world.certified_free(x0, y0, x0 + dx * stretch, y0 + dy * stretch)
+        touched = False
+        if not near:
+            robot.drive(dx, dy, None)
+        elif self.physics.revert_on_collision:
+            # The step is undone if it touches, so its remaining substeps need not run.
+            saved = robot.snapshot()
+            if robot.drive(dx, dy, world, stop_on_touch=True):
+                robot.restore(saved)
+                return True
         else:
-            x, y = self.robot.position()
-        width, height = self.layout.arena
-        self._x, self._y = min(max(x, 0.0), width), min(max(y, 0.0), height)
+            touched = robot.drive(dx, dy, world)
+        if self._has_heading:
+            x, y, self._heading = robot.pose()
+        else:
+            x, y = robot.position()
+        # Physics may push a body a hair past the arena's edge; the observation stays in its box.
+        width, height = self._arena
+        self._x = x if 0.0 <= x <= width else 0.0 if x < 0.0 else width
+        self._y = y if 0.0 <= y <= height else 0.0 if y < 0.0 else height
         return touched
 
     def _draw_noise(self) -> None:

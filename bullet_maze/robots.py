@@ -22,6 +22,7 @@ from abc import ABC, abstractmethod
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pybullet as pb
@@ -48,6 +49,21 @@ def _yaw(orientation: tuple[float, float, float, float]) -> float:
 
 def _quaternion(yaw: float) -> tuple[float, float, float, float]:
     return (0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
+
+
+_STILL = (0.0, 0.0, 0.0)
+"""A zero linear or angular velocity."""
+
+
+class RobotState(NamedTuple):
+    """What ``Robot.snapshot`` keeps: pybullet's base pose and the joint positions."""
+
+    position: tuple[float, float, float]
+    """Base position in metres."""
+    orientation: tuple[float, float, float, float]
+    """Base orientation quaternion (x, y, z, w)."""
+    joints: tuple[float, ...]
+    """Joint positions in joint order."""
 
 
 def wrap_angle(angle: float) -> float:
@@ -149,6 +165,8 @@ class Robot(ABC):
         self.scale = 1.0
         """globalScaling applied to the URDF."""
         self._rest_z = 0.0
+        self._joints = range(0)
+        self._physics = PhysicsParams()
 
     def _load_scaled(self, path: Path, radius: float | None) -> None:
         """Load the URDF, rescaled so that its footprint has ``radius`` (maze units) if given."""
@@ -164,6 +182,7 @@ class Robot(ABC):
         self.body_id = body
         self.scale = scale
         self.radius = natural * scale / METRES_PER_UNIT
+        self._joints = range(pb.getNumJoints(body, physicsClientId=self.client))
         base_z = pb.getBasePositionAndOrientation(body, physicsClientId=self.client)[0][2]
         self._rest_z = base_z - low * scale
 
@@ -175,43 +194,55 @@ class Robot(ABC):
         pb.resetBaseVelocity(self.body_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
                              physicsClientId=self.client)
 
+    # The calls of the dynamic step name the client positionally: pybullet parses a keyword
+    # argument for about 0.25 us, a twentieth of a physics step.
+
     def position(self) -> tuple[float, float]:
         """(x, y) of the robot's base in maze units."""
-        x, y, _ = pb.getBasePositionAndOrientation(self.body_id, physicsClientId=self.client)[0]
+        (x, y, _), _ = pb.getBasePositionAndOrientation(self.body_id, self.client)
         return x / METRES_PER_UNIT, y / METRES_PER_UNIT
 
     def pose(self) -> tuple[float, float, float]:
         """(x, y, heading) of the robot's base in maze units and radians."""
-        position, orientation = pb.getBasePositionAndOrientation(self.body_id,
-                                                                 physicsClientId=self.client)
+        position, orientation = pb.getBasePositionAndOrientation(self.body_id, self.client)
         s = METRES_PER_UNIT
         return position[0] / s, position[1] / s, _yaw(orientation)
 
     def joint_states(self) -> tuple[float, ...]:
-        """Joint positions, to undo a dynamic step with ``restore_joint_states``."""
-        count = pb.getNumJoints(self.body_id, physicsClientId=self.client)
-        if count == 0:
+        """Joint positions (radians or metres, in joint order)."""
+        if not self._joints:
             return ()
-        states = pb.getJointStates(self.body_id, range(count), physicsClientId=self.client)
+        states = pb.getJointStates(self.body_id, self._joints, physicsClientId=self.client)
         return tuple(state[0] for state in states)
 
-    def restore_joint_states(self, positions: tuple[float, ...]) -> None:
-        """Put the joints back at these positions, at rest."""
-        for joint, position in enumerate(positions):
-            pb.resetJointState(self.body_id, joint, position, 0.0, physicsClientId=self.client)
+    def snapshot(self) -> RobotState:
+        """The robot's base pose and joint positions, for ``restore``."""
+        position, orientation = pb.getBasePositionAndOrientation(self.body_id, self.client)
+        return RobotState(position, orientation, self.joint_states())
 
-    @abstractmethod
+    def restore(self, state: RobotState) -> None:
+        """Put the robot back as ``snapshot`` found it, at rest (undoes a dynamic step)."""
+        body, client = self.body_id, self.client
+        pb.resetBasePositionAndOrientation(body, state.position, state.orientation, client)
+        pb.resetBaseVelocity(body, _STILL, _STILL, client)
+        for joint, position in zip(self._joints, state.joints, strict=True):
+            pb.resetJointState(body, joint, position, 0.0, physicsClientId=client)
+
     def configure(self, physics: PhysicsParams) -> None:
-        """Set the dynamics (damping, friction) used by ``drive``."""
+        """Keep the settings ``drive`` runs with; subclasses also set their dynamics here."""
+        self._physics = physics
 
     @abstractmethod
-    def drive(self, dx: float, dy: float, physics: PhysicsParams, watch: World | None) -> bool:
-        """Dynamic mode: move by (dx, dy) maze units through physics substeps.
+    def drive(self, dx: float, dy: float, watch: World | None,
+              stop_on_touch: bool = False) -> bool:
+        """Dynamic mode: move by (dx, dy) maze units through physics substeps, with the
+        settings given to ``configure``.
 
         If ``watch`` is given, contacts with its walls and obstacles are checked after every
         substep (pybullet reports those found at the start of the substep, so the first, which
         sees the pose before the move, is skipped and the final pose is checked explicitly);
-        returns whether any occurred.
+        returns whether any occurred. With ``stop_on_touch`` the substeps end at the first
+        contact, for a caller that undoes a touching step anyway.
         """
 
 
@@ -231,26 +262,34 @@ class HolonomicRobot(Robot):
         super().__init__(client)
         self.name = name or path.stem
         self._load_scaled(path, radius)
+        self._rate = 0.0
+        self._substeps = range(0)
 
     def configure(self, physics: PhysicsParams) -> None:
+        super().configure(physics)
         pb.changeDynamics(self.body_id, -1, linearDamping=0.0, angularDamping=0.0,
                           physicsClientId=self.client)
+        self._rate = METRES_PER_UNIT / (physics.substeps * physics.time_step)
+        self._substeps = range(physics.substeps)
 
-    def drive(self, dx: float, dy: float, physics: PhysicsParams, watch: World | None) -> bool:
-        rate = METRES_PER_UNIT / (physics.substeps * physics.time_step)
-        pb.resetBaseVelocity(self.body_id, (dx * rate, dy * rate, 0.0), (0.0, 0.0, 0.0),
-                             physicsClientId=self.client)
-        touched = False
-        client = self.client
+    def drive(self, dx: float, dy: float, watch: World | None,
+              stop_on_touch: bool = False) -> bool:
+        client, body, rate = self.client, self.body_id, self._rate
+        step = pb.stepSimulation
+        pb.resetBaseVelocity(body, (dx * rate, dy * rate, 0.0), _STILL, client)
         if watch is None:
-            for _ in range(physics.substeps):
-                pb.stepSimulation(physicsClientId=client)
+            for _ in self._substeps:
+                step(client)
             return False
-        pb.stepSimulation(physicsClientId=client)
-        for _ in range(physics.substeps - 1):
-            pb.stepSimulation(physicsClientId=client)
-            touched = touched or watch.touching(self.body_id)
-        return watch.touching_now(self.body_id) or touched
+        touched = False
+        step(client)
+        for _ in self._substeps[1:]:
+            step(client)
+            if not touched and watch.touching(body):
+                if stop_on_touch:
+                    return True
+                touched = True
+        return watch.touching_now(body) or touched
 
 
 class HuskyRobot(Robot):
@@ -310,6 +349,7 @@ class HuskyRobot(Robot):
                                   physicsClientId=client)
 
     def configure(self, physics: PhysicsParams) -> None:
+        super().configure(physics)
         self._command(0.0, 0.0)
 
     def _command(self, forward: float, turn: float) -> None:
@@ -324,7 +364,9 @@ class HuskyRobot(Robot):
             targetVelocities=[left, left, right, right], forces=[self.WHEEL_FORCE] * 4,
             physicsClientId=self.client)
 
-    def drive(self, dx: float, dy: float, physics: PhysicsParams, watch: World | None) -> bool:
+    def drive(self, dx: float, dy: float, watch: World | None,
+              stop_on_touch: bool = False) -> bool:
+        physics = self._physics
         target = math.atan2(dy, dx)
         distance = math.hypot(dx, dy)
         ux, uy = math.cos(target), math.sin(target)
@@ -353,6 +395,9 @@ class HuskyRobot(Robot):
                 substep += 1
                 if watch is not None and substep > 1 and not touched:
                     touched = watch.touching(self.body_id)
+                    if touched and stop_on_touch:
+                        self._command(0.0, 0.0)
+                        return True
         self._command(0.0, 0.0)
         return touched or (watch is not None and watch.touching_now(self.body_id))
 
@@ -360,6 +405,7 @@ class HuskyRobot(Robot):
         """(horizontal speed in m/s, yaw rate in rad/s) of the base."""
         linear, angular = pb.getBaseVelocity(self.body_id, physicsClientId=self.client)
         return math.hypot(linear[0], linear[1]), angular[2]
+
 
 def make_robot(spec: str | Path, client: int, radius: float | None) -> Robot:
     """``"disc"``, ``"husky"`` or a path to a URDF file (moved as a holonomic body).

@@ -70,6 +70,7 @@ class World:
         self.probe_id = self._build_probe(robot_radius)
         self._probe_xy = (math.nan, math.nan)
         self._safe = (math.nan, math.nan, -math.inf)  # centre x, y and radius of the safe ball
+        self._disc = self._safe  # the cell's free disc that last certified a move
         self._cells: dict[tuple[int, int], _CellBounds | None] = {}
 
     def _build_ground(self) -> int:
@@ -179,16 +180,48 @@ class World:
             return math.inf
         return min(point[8] for point in points) / METRES_PER_UNIT
 
+    def certified_clear(self, x: float, y: float, reach: float) -> bool:
+        """Whether what earlier queries left proves a footprint centred anywhere within
+        ``reach`` of (x, y) free: the free disc around the centre of (x, y)'s cell (see
+        ``sweep_collides``) or the safe ball covers that disc. Makes no query except the first
+        one of a cell. False means "not proved", not "collides"."""
+        cx, cy, free = self._disc  # the disc that answered last: often still covers the move
+        if math.hypot(x - cx, y - cy) + reach <= free:
+            return True
+        cell = (int(x // CELL), int(y // CELL))
+        bounds = self._cells.get(cell, _UNSEEN)
+        if bounds is _UNSEEN:
+            bounds = self._cells[cell] = self._cell_bounds(cell)
+        if bounds is not None and math.hypot(x - bounds.cx, y - bounds.cy) + reach <= bounds.free:
+            self._disc = (bounds.cx, bounds.cy, bounds.free)
+            return True
+        cx, cy, safe = self._safe
+        return math.hypot(x - cx, y - cy) + reach <= safe
+
     def clear_within(self, x: float, y: float, reach: float) -> bool:
         """Whether a footprint centred anywhere within ``reach`` of (x, y) is free; answered
-        from the safe ball when it covers that disc, else by a distance query that renews it."""
-        cx, cy, safe = self._safe
-        if math.hypot(x - cx, y - cy) + reach <= safe:
+        by ``certified_clear`` when it can, else by a distance query that renews the safe
+        ball."""
+        if self.certified_clear(x, y, reach):
             return True
         look = max(reach, SAFE_REACH)
         gap = self.distance(x, y, look)
         self._safe = (x, y, min(gap, look) - CONTACT_TOLERANCE)
         return reach <= self._safe[2]
+
+    def certified_free(self, x0: float, y0: float, x1: float, y1: float) -> bool:
+        """Whether what earlier queries left proves the move from (x0, y0) to (x1, y1) free:
+        the safe ball holds both ends, or the bounds of (x0, y0)'s cell clear it (see
+        ``sweep_collides``). Makes no query except the first one of a cell. False means "not
+        proved", not "collides"."""
+        cx, cy, safe = self._safe
+        if math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x0 - cx, y0 - cy) <= safe:
+            return True  # both ends, hence the whole segment, inside a certified free disc
+        cell = (int(x0 // CELL), int(y0 // CELL))
+        bounds = self._cells.get(cell, _UNSEEN)
+        if bounds is _UNSEEN:
+            bounds = self._cells[cell] = self._cell_bounds(cell)
+        return bounds is not None and bounds.clear(x0, y0, x1, y1)
 
     def sweep_collides(self, x0: float, y0: float, x1: float, y1: float) -> bool:
         """Whether the robot's footprint comes within ``CONTACT_TOLERANCE`` of a solid anywhere
@@ -207,14 +240,7 @@ class World:
         any move whose two ends satisfy them (the bound is linear along the move, so its ends
         decide). A move the cached bounds cannot clear gets the queries above.
         """
-        cx, cy, safe = self._safe
-        if math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x0 - cx, y0 - cy) <= safe:
-            return False  # both ends, hence the whole segment, inside a certified free disc
-        cell = (int(x0 // CELL), int(y0 // CELL))
-        bounds = self._cells.get(cell, _UNSEEN)
-        if bounds is _UNSEEN:
-            bounds = self._cells[cell] = self._cell_bounds(cell)
-        if bounds is not None and bounds.clear(x0, y0, x1, y1):
+        if self.certified_free(x0, y0, x1, y1):
             return False
         length = math.hypot(x1 - x0, y1 - y0)
         if length == 0.0:
@@ -279,12 +305,16 @@ class World:
 class _CellBounds:
     """Lower bounds on the footprint's distance to every solid around a cell's centre."""
 
-    __slots__ = ("cx", "cy", "pieces")
+    __slots__ = ("cx", "cy", "free", "pieces")
 
     def __init__(self, cx: float, cy: float,
                  pieces: tuple[tuple[float, float, float], ...]) -> None:
         self.cx, self.cy = cx, cy
         self.pieces = pieces  # (distance at the centre, normal x, normal y) per convex piece
+        # Radius of the disc around the centre where a footprint is free: pieces the query did
+        # not return lie farther than its reach plus the tolerance.
+        nearest = min((piece[0] for piece in pieces), default=CELL_REACH + CONTACT_TOLERANCE)
+        self.free = min(nearest, CELL_REACH + CONTACT_TOLERANCE) - CONTACT_TOLERANCE
 
     def clear(self, x0: float, y0: float, x1: float, y1: float) -> bool:
         """Whether the bounds prove the move from (x0, y0) to (x1, y1) free."""
