@@ -7,7 +7,10 @@ substeps in the same world, and ``PointMaze_UMaze-v3`` when gymnasium-robotics i
 memory over many create/close cycles. The machine may be shared: rates are measured in CPU time of
 this process (``time.process_time``; everything here runs in one thread), so time spent waiting
 for a core does not count, and every measurement is repeated in rounds, interleaved with the
-others, the best round counting. ``--wall`` uses wall-clock time instead.
+others (each round runs them all, alternately forwards and backwards, so that an env and its
+reference run side by side). A rate is the median over the rounds; a ratio is the median of the
+ratios measured within each round, so that load which slows a whole round cancels out.
+``--wall`` uses wall-clock time instead.
 
 Run: ``python bench/bench_env.py`` (``--quick`` for a smoke test).
 """
@@ -17,6 +20,7 @@ from __future__ import annotations
 import argparse
 import gc
 import os
+import statistics
 import time
 from collections.abc import Callable
 
@@ -61,11 +65,13 @@ def env_runner(env_id: str, steps: int, **kwargs: object) -> Callable[[], float]
 
 def raw_runner(steps: int, substeps: int) -> Callable[[], float]:
     """Bare pybullet in the dynamic env's own world and settings: per env step, the disc's
-    velocity command for a random direction, then the same number of ``stepSimulation``."""
+    velocity command for a random direction, then the same number of ``stepSimulation``, each
+    call naming the client positionally as the env does (a keyword costs about 0.25 us)."""
     env = bullet_maze.BulletMazeEnv(mode="dynamic", substeps=substeps)
     env.reset(seed=0)
     client, body = env.client_id, env.robot.body_id
     physics = env.physics
+    substeps = range(physics.substeps)
     speed = (
         env.task.step_size * bullet_maze.METRES_PER_UNIT / (physics.substeps * physics.time_step)
     )
@@ -78,9 +84,9 @@ def raw_runner(steps: int, substeps: int) -> Callable[[], float]:
         env.reset(seed=0)
         start = CLOCK()
         for velocity in velocities:
-            pb.resetBaseVelocity(body, velocity, (0.0, 0.0, 0.0), physicsClientId=client)
-            for _ in range(physics.substeps):
-                pb.stepSimulation(physicsClientId=client)
+            pb.resetBaseVelocity(body, velocity, (0.0, 0.0, 0.0), client)
+            for _ in substeps:
+                pb.stepSimulation(client)
         return steps / (CLOCK() - start)
 
     return run
@@ -102,35 +108,66 @@ def memory_cycles(cycles: int, **kwargs: object) -> list[tuple[int, float]]:
     return marks
 
 
+def measure(runners: dict[str, Callable[[], float]], rounds: int) -> dict[str, list[float]]:
+    """Every runner once per round, forwards in even rounds and backwards in odd ones."""
+    rates: dict[str, list[float]] = {name: [] for name in runners}
+    names = list(runners)
+    for i in range(rounds):
+        for name in names if i % 2 == 0 else names[::-1]:
+            rates[name].append(runners[name]())
+    return rates
+
+
+def paired_ratio(rates: dict[str, list[float]], slow: str, fast: str) -> tuple[float, float, float]:
+    """Median and quartiles over the rounds of ``rate[fast] / rate[slow]`` within each round
+    (the time of a ``slow`` step over the time of a ``fast`` step)."""
+    ratios = sorted(f / s for s, f in zip(rates[slow], rates[fast], strict=True))
+    if len(ratios) < 4:
+        return statistics.median(ratios), ratios[0], ratios[-1]
+    low, _, high = statistics.quantiles(ratios, n=4)
+    return statistics.median(ratios), low, high
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=20_000, help="kinematic steps per round")
-    parser.add_argument("--rounds", type=int, default=5, help="interleaved rounds; best counts")
+    parser.add_argument("--rounds", type=int, default=21,
+                        help="interleaved rounds; medians count")
     parser.add_argument("--cycles", type=int, default=1000, help="create/close cycles")
     parser.add_argument("--quick", action="store_true", help="a short run for a smoke test")
     parser.add_argument("--wall", action="store_true", help="wall-clock time, not CPU time")
+    parser.add_argument("--only", choices=("speed", "memory"), help="run one part")
     args = parser.parse_args()
     global CLOCK
     if args.wall:
         CLOCK = time.perf_counter
     if args.quick:
-        args.steps, args.rounds, args.cycles = 2000, 1, 50
-    steps, dyn = args.steps, args.steps // 5
-    default = bullet_maze.PhysicsParams().substeps
+        args.steps, args.rounds, args.cycles = 2000, 3, 50
+    if args.only != "memory":
+        speed(args.steps, args.rounds, args.wall)
+    if args.only != "speed":
+        memory(args.cycles)
 
+
+def speed(steps: int, rounds: int, wall: bool) -> None:
+    """Steps per second of every case, and the ratios the targets are stated in."""
+    dyn = max(100, steps // 10)
+    default = bullet_maze.PhysicsParams().substeps
+    # Each env beside its reference, so that the two run next to each other in every round.
     runners: dict[str, Callable[[], float]] = {
         "kinematic, disc": env_runner("BulletMaze-v0", steps),
         "kinematic, husky": env_runner("BulletMaze-v0", steps, robot="husky"),
         "kinematic, disc, corridors": env_runner("BulletMaze-corridors-v0", steps),
         "dynamic, disc": env_runner("BulletMaze-v0", dyn, mode="dynamic"),
         "raw stepSimulation, same substeps": raw_runner(dyn, default),
+        f"raw stepSimulation, {2 * default} substeps": raw_runner(dyn, 2 * default),
         f"dynamic, disc, {2 * default} substeps": env_runner(
             "BulletMaze-v0", dyn, mode="dynamic", substeps=2 * default),
-        f"raw stepSimulation, {2 * default} substeps": raw_runner(dyn, 2 * default),
         "dynamic, husky": env_runner(
-            "BulletMaze-v0", max(20, dyn // 100), mode="dynamic", robot="husky"
+            "BulletMaze-v0", max(10, dyn // 100), mode="dynamic", robot="husky"
         ),
     }
+    pointmaze = "PointMaze_UMaze-v3 (MuJoCo)"
     try:
         import gymnasium_robotics
     except ImportError:
@@ -140,34 +177,53 @@ def main() -> None:
         )
     else:
         gym.register_envs(gymnasium_robotics)
-        runners["PointMaze_UMaze-v3 (MuJoCo)"] = env_runner("PointMaze_UMaze-v3", dyn)
+        runners[pointmaze] = env_runner("PointMaze_UMaze-v3", dyn)
+        # PointMaze beside the dynamic disc as well: run it again right after it.
+        order = list(runners)
+        order.insert(order.index("dynamic, disc"), order.pop(order.index(pointmaze)))
+        runners = {name: runners[name] for name in order}
 
-    best = dict.fromkeys(runners, 0.0)
-    for _ in range(args.rounds):
-        for name, run in runners.items():
-            best[name] = max(best[name], run())
+    for run in runners.values():  # warm up: caches, lazily built cells, first-call checks
+        run()
+    rates = measure(runners, rounds)
 
     physics = bullet_maze.PhysicsParams()
-    clock = "wall-clock" if args.wall else "CPU"
+    clock = "wall-clock" if wall else "CPU"
     print(
-        f"env steps per {clock} second through gymnasium.make, best of {args.rounds} rounds, "
-        f"one process (dynamic: {physics.substeps} substeps of {physics.time_step:.5f} s)"
+        f"env steps per {clock} second through gymnasium.make, median of {rounds} interleaved "
+        f"rounds (quartiles), one process (dynamic: {physics.substeps} substeps of "
+        f"{physics.time_step:.5f} s)"
     )
-    for name, rate in best.items():
-        print(f"  {name:36s} {rate:10,.0f}")
-    overhead = best["raw stepSimulation, same substeps"] / best["dynamic, disc"]
-    print(f"  dynamic overhead: env step time / raw physics time = {overhead:.2f} (target <= 1.25)")
-    pointmaze = best.get("PointMaze_UMaze-v3 (MuJoCo)")
-    if pointmaze:
-        print(f"  kinematic / PointMaze = {best['kinematic, disc'] / pointmaze:.1f} (target >= 5)")
-        print(f"  dynamic / PointMaze   = {best['dynamic, disc'] / pointmaze:.2f} (target >= 1)")
-
-    for label, cycles, kwargs in (
-        ("disc", args.cycles, {}),
-        ("husky", max(10, args.cycles // 5), {"robot": "husky"}),
+    for name, values in rates.items():
+        if len(values) >= 4:
+            low, _, high = statistics.quantiles(values, n=4)
+        else:
+            low, high = min(values), max(values)
+        print(f"  {name:36s} {statistics.median(values):10,.0f}  ({low:,.0f}-{high:,.0f})")
+    print("ratios, median of the per-round ratios (quartiles):")
+    for label, slow, fast, target in (
+        ("dynamic overhead: env step time / raw physics time", "dynamic, disc",
+         "raw stepSimulation, same substeps", "target <= 1.25"),
+        (f"the same with {2 * default} substeps", f"dynamic, disc, {2 * default} substeps",
+         f"raw stepSimulation, {2 * default} substeps", "target <= 1.25"),
     ):
-        marks = memory_cycles(cycles, **kwargs)
-        print(f"resident memory (MiB) over {cycles} make/reset/step/close cycles, {label}:")
+        median, low, high = paired_ratio(rates, slow, fast)
+        print(f"  {label:52s} {median:5.2f}  ({low:.2f}-{high:.2f}; {target})")
+    if pointmaze in rates:
+        for label, name, target in (("kinematic / PointMaze", "kinematic, disc", ">= 5"),
+                                    ("dynamic / PointMaze", "dynamic, disc", ">= 1")):
+            median, low, high = paired_ratio(rates, pointmaze, name)
+            print(f"  {label:52s} {median:5.2f}  ({low:.2f}-{high:.2f}; target {target})")
+
+
+def memory(cycles: int) -> None:
+    """Resident memory over many make/reset/step/close cycles, disc and husky."""
+    for label, count, kwargs in (
+        ("disc", cycles, {}),
+        ("husky", max(10, cycles // 5), {"robot": "husky"}),
+    ):
+        marks = memory_cycles(count, **kwargs)
+        print(f"resident memory (MiB) over {count} make/reset/step/close cycles, {label}:")
         print("  " + "  ".join(f"{i}: {mb:.1f}" for i, mb in marks))
         print(f"  growth after the first 10 %: {marks[-1][1] - marks[1][1]:+.1f} MiB")
 
