@@ -1,6 +1,6 @@
 """The tree agent on Gymnasium's MountainCar-v0: the agent is not tied to the maze.
 
-    python examples/mountain_car.py [--episodes 500] [--exploration epsilon-greedy] [--seed 0]
+    python examples/mountain_car.py [--episodes 1000] [--exploration epsilon-greedy] [--seed 0]
 
 ``train`` is what the tests call; it returns the per-episode statistics and the greedy policy's
 score on a few evaluation episodes.
@@ -52,7 +52,7 @@ def evaluate(agent: TreeAgent, env: gym.Env, episodes: int, seed: int) -> list[t
 
 
 def train(
-    episodes: int = 500,
+    episodes: int = 1000,
     exploration: str = "epsilon-greedy",
     seed: int = 0,
     config: TreeConfig | None = None,
@@ -75,7 +75,7 @@ def train(
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--episodes", type=int, default=500)
+    parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--exploration", default="epsilon-greedy")
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
