@@ -21,7 +21,7 @@ from bullet_maze.actions import DIRECTIONS
 from bullet_maze.geometry import clearance
 from bullet_maze.layout import DEFAULT_LAYOUT, MazeLayout, load_layout
 from bullet_maze.params import MODES, PhysicsParams, TaskParams
-from bullet_maze.planning import PhysicalLimit, shortest_path
+from bullet_maze.planning import PhysicalLimit, goal_reachable, shortest_path
 from bullet_maze.rendering import TopDownCamera
 from bullet_maze.robots import Robot, make_robot, wrap_angle
 from bullet_maze.world import CONTACT_TOLERANCE, World
@@ -491,7 +491,27 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         if math.dist(start, goal) <= layout.goal_radius:
             raise ValueError(f"options: the start {start} lies inside the goal circle "
                              f"(centre {goal}, radius {layout.goal_radius:g})")
+        if (start, goal) != (layout.start, layout.goal):
+            self._check_reachable(start, goal, options)
         return start, heading, goal
+
+    def _check_reachable(self, start: tuple[float, float], goal: tuple[float, float],
+                         options: dict[str, Any]) -> None:
+        """A ValueError naming the option unless the robot can get from the start into the goal
+        circle (see ``bullet_maze.planning.goal_reachable``: the layout's free regions for this
+        radius are computed once, about 30 ms, then each check is a lookup)."""
+        radius = self.robot.radius
+        if goal_reachable(self.layout, radius, start, goal):
+            return
+        robot = f"a robot of radius {radius:g}"
+        if options.get("goal") is None:
+            raise ValueError(f"options['start'] = {start}: the goal circle around {goal} cannot "
+                             f"be reached from there by {robot}")
+        where = (f"options['start'] = {start}" if options.get("start") is not None
+                 else f"the start {start}")
+        raise ValueError(f"options['goal'] = {goal}: its circle (radius "
+                         f"{self.layout.goal_radius:g}) cannot be reached from {where} by "
+                         f"{robot}")
 
     def _check_inside(self, point: tuple[float, float], name: str) -> None:
         if not self.layout.contains(*point):

@@ -18,6 +18,7 @@ Section V.A's steps carry noise, so a learner can only approach these on average
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from dataclasses import dataclass
@@ -63,19 +64,54 @@ class PhysicalLimit:
     step_size: float
 
 
-def goal_reachable(layout: MazeLayout, robot_radius: float) -> bool:
-    """Whether a disc of ``robot_radius`` can move from the start into the goal circle.
+def goal_reachable(
+    layout: MazeLayout,
+    robot_radius: float,
+    start: tuple[float, float] | None = None,
+    goal: tuple[float, float] | None = None,
+) -> bool:
+    """Whether a disc of ``robot_radius`` can move from ``start`` into the goal circle around
+    ``goal`` (by default the layout's own; the circle has the layout's goal radius).
 
     Decided on a grid of cells no larger than half the radius: a gap that leaves the robot's
-    centre a band narrower than one cell may be missed (reported unreachable).
+    centre a band narrower than one cell may be missed (reported unreachable). The grid's
+    connected free regions depend only on the layout's solids and the radius and are kept
+    (``_free_regions``), so another start or goal in the same layout costs a lookup.
     """
-    resolution = min(2 * GRID_RESOLUTION, robot_radius / 2.0, layout.goal_radius / 2.0)
-    grid = _Grid(layout, robot_radius, resolution)
-    edges = grid.edges(diagonal=False)
-    _, labels = connected_components(edges, directed=False)
-    start = grid.start_node()
-    goals = grid.goal_nodes()
-    return start is not None and bool(np.any(labels[goals] == labels[start]))
+    regions = _free_regions(_solids(layout), float(robot_radius))
+    return regions.connects(layout.start if start is None else start,
+                            layout.goal if goal is None else goal, layout.goal_radius)
+
+
+def _solids(layout: MazeLayout) -> MazeLayout:
+    """The layout with everything but its solids, arena and goal radius set to fixed values, as
+    the cache key of what depends only on those."""
+    return dataclasses.replace(layout, name="", description="", start=(0.0, 0.0),
+                               goal=(0.0, 0.0), start_heading=0.0, start_size=1.0,
+                               robot_radius=1.0)
+
+
+class _Regions:
+    """The connected components of a grid's free cells (4-connected)."""
+
+    def __init__(self, grid: _Grid) -> None:
+        self.grid = grid
+        _, self.labels = connected_components(grid.edges(diagonal=False), directed=False)
+
+    def connects(self, start: tuple[float, float], goal: tuple[float, float],
+                 goal_radius: float) -> bool:
+        """Whether the start's region holds a free cell of the goal circle."""
+        node = self.grid.start_node(start)
+        if node is None:
+            return False
+        goals = self.grid.goal_nodes(goal, goal_radius)
+        return bool(np.any(self.labels[goals] == self.labels[node]))
+
+
+@lru_cache(maxsize=8)
+def _free_regions(solids: MazeLayout, radius: float) -> _Regions:
+    resolution = min(2 * GRID_RESOLUTION, radius / 2.0, solids.goal_radius / 2.0)
+    return _Regions(_Grid(solids, radius, resolution))
 
 
 def shortest_path(
@@ -92,8 +128,8 @@ def _shortest_path(layout: MazeLayout, radius: float, step_size: float) -> Physi
         raise ValueError(f"robot_radius and step_size must be positive, got {radius}, "
                          f"{step_size}")
     grid = _Grid(layout, radius, _resolution(layout))
-    start = grid.start_node()
-    goals = grid.goal_nodes()
+    start = grid.start_node(layout.start)
+    goals = grid.goal_nodes(layout.goal, layout.goal_radius)
     if start is None or goals.size == 0:
         raise ValueError(f"{layout.source}: no free start or goal for radius {radius}")
     dist, pred = dijkstra(grid.edges(diagonal=True), indices=start, return_predecessors=True)
@@ -157,8 +193,9 @@ class _Grid:
         r, c, w = np.concatenate(rows), np.concatenate(cols), np.concatenate(weights)
         return coo_matrix((np.r_[w, w], (np.r_[r, c], np.r_[c, r])), shape=(n, n)).tocsr()
 
-    def start_node(self) -> int | None:
-        sx, sy = self.layout.start
+    def start_node(self, start: tuple[float, float]) -> int | None:
+        """The free node nearest ``start`` among the four around it, if any."""
+        sx, sy = start
         best: tuple[float, int] | None = None
         for i in (math.floor(sx / self.h), math.ceil(sx / self.h)):
             for j in (math.floor(sy / self.h), math.ceil(sy / self.h)):
@@ -168,10 +205,20 @@ class _Grid:
                         best = (d, i * self.ny + j)
         return None if best is None else best[1]
 
-    def goal_nodes(self) -> np.ndarray:
-        gx, gy = self.layout.goal
-        inside = np.hypot(self.xy[..., 0] - gx, self.xy[..., 1] - gy) <= self.layout.goal_radius
-        return np.flatnonzero((inside & self.free).ravel())
+    def goal_nodes(self, goal: tuple[float, float], radius: float) -> np.ndarray:
+        """The free nodes within ``radius`` of ``goal``, in increasing order."""
+        gx, gy = goal
+        # Only the circle's bounding box (one node wider on each side) is looked at.
+        i0 = max(0, math.floor((gx - radius) / self.h) - 1)
+        i1 = min(self.nx, math.ceil((gx + radius) / self.h) + 2)
+        j0 = max(0, math.floor((gy - radius) / self.h) - 1)
+        j1 = min(self.ny, math.ceil((gy + radius) / self.h) + 2)
+        if i0 >= i1 or j0 >= j1:
+            return np.zeros(0, dtype=np.int64)
+        box = self.xy[i0:i1, j0:j1]
+        inside = np.hypot(box[..., 0] - gx, box[..., 1] - gy) <= radius
+        ii, jj = np.nonzero(inside & self.free[i0:i1, j0:j1])
+        return (ii + i0) * self.ny + (jj + j0)
 
 
 def _pull_taut(layout: MazeLayout, points: np.ndarray, limit: float) -> np.ndarray:

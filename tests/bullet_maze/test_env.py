@@ -7,6 +7,7 @@ import gc
 import math
 import warnings
 from collections.abc import Callable
+from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
@@ -16,6 +17,8 @@ from gymnasium.utils.env_checker import check_env
 
 import bullet_maze
 from bullet_maze import Action, BulletMazeEnv, available_layouts
+
+from .conftest import SMALL_MAZE
 
 
 def test_import_registers_the_ids() -> None:
@@ -146,6 +149,44 @@ def test_bad_reset_options(
     env = make_env()
     with pytest.raises(ValueError, match=message):
         env.reset(seed=0, options=options)
+
+
+POCKET = """
+[[walls]]
+center = [60.0, 18.0]
+size = [2.0, 36.0]
+[[walls]]
+center = [81.5, 40.0]
+size = [37.0, 2.0]
+"""
+"""Walls that close the lower right of ``SMALL_MAZE`` into a pocket, x in (61, 100) and y in
+(0, 39), whose only way out is a 3.6-unit gap at (62, 37.5): too narrow for the robot of
+radius 2 (4 across), wide enough for one of radius 1."""
+
+
+def test_reset_refuses_a_goal_or_start_the_robot_cannot_reach(
+    make_env: Callable[..., gym.Env], write_maze: Callable[[str], Path],
+) -> None:
+    env = make_env(maze=write_maze(SMALL_MAZE + POCKET))
+    with pytest.raises(ValueError, match=r"options\['goal'\] = \(80\.0, 20\.0\).*cannot be "
+                                         r"reached from the start \(20\.0, 20\.0\).*radius 2"):
+        env.reset(seed=0, options={"goal": (80.0, 20.0)})
+    with pytest.raises(ValueError, match=r"options\['start'\] = \(80\.0, 20\.0\): the goal "
+                                         r"circle around \(80\.0, 80\.0\) cannot be reached"):
+        env.reset(seed=0, options={"start": (80.0, 20.0, 0.0)})
+    with pytest.raises(ValueError, match=r"options\['goal'\] = \(80\.0, 20\.0\).*from "
+                                         r"options\['start'\] = \(30\.0, 60\.0\)"):
+        env.reset(seed=0, options={"start": (30.0, 60.0), "goal": (80.0, 20.0)})
+    # Both inside the pocket, or both outside: fine; a refused reset leaves the env usable.
+    obs, info = env.reset(seed=0, options={"start": (70.0, 10.0), "goal": (85.0, 25.0)})
+    assert np.array_equal(obs, [70.0, 10.0])
+    assert info["distance_to_goal"] == pytest.approx(math.dist((70, 10), (85, 25)))
+    obs, _ = env.reset(seed=0, options={"start": (30.0, 60.0), "goal": (40.0, 90.0)})
+    assert np.array_equal(obs, [30.0, 60.0])
+    # A robot of radius 1 fits through the gap, so the same goal is accepted for it.
+    small = make_env(maze=write_maze(SMALL_MAZE + POCKET), robot_radius=1.0)
+    small.reset(seed=0, options={"goal": (80.0, 20.0)})
+    assert small.unwrapped.goal == (80.0, 20.0)
 
 
 @pytest.mark.parametrize(
