@@ -7,6 +7,7 @@ backend: each task carries its own seeds.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import multiprocessing
 import os
@@ -50,11 +51,30 @@ class SerialBackend:
             yield fn(task)
 
 
+ONE_THREAD = {name: "1" for name in (
+    "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS")}
+"""Each worker is one run on one core: no BLAS or OpenMP thread pools (as Ray's workers)."""
+
+
+@contextlib.contextmanager
+def _environment(values: dict[str, str]) -> Iterator[None]:
+    """Set environment variables that are not set already (inherited by spawned workers)."""
+    added = {k: v for k, v in values.items() if k not in os.environ}
+    os.environ.update(added)
+    try:
+        yield
+    finally:
+        for key in added:
+            os.environ.pop(key, None)
+
+
 class ProcessBackend:
     """A local ``ProcessPoolExecutor``; one task per worker at a time.
 
     Workers are started with ``spawn`` so that none inherits a pybullet client, a thread or a
-    lock from the parent; each imports what it needs once and runs many tasks.
+    lock from the parent; each imports what it needs once and runs many tasks. Each worker
+    gets one BLAS/OpenMP thread (:data:`ONE_THREAD`, unless the caller set those variables):
+    the parallelism is across runs, and idle thread pools would compete for the cores.
     """
 
     def __init__(self, workers: int | None = None, start_method: str = "spawn") -> None:
@@ -71,7 +91,8 @@ class ProcessBackend:
         workers = min(self.workers, len(tasks))
         executor = ProcessPoolExecutor(max_workers=workers, mp_context=context)
         try:
-            pending: set[Future[R]] = {executor.submit(fn, task) for task in tasks}
+            with _environment(ONE_THREAD):  # workers start on the first submits
+                pending: set[Future[R]] = {executor.submit(fn, task) for task in tasks}
             while pending:
                 done, pending = wait(pending, return_when=FIRST_COMPLETED)
                 for future in done:

@@ -154,3 +154,11 @@ def test_resume_after_a_kill(small_config, standins, tmp_path: Path,
 def test_unknown_backend_is_named():
     with pytest.raises(ValueError, match="gpu"):
         make_backend("gpu")
+
+
+def test_process_workers_get_one_blas_thread_and_the_parent_is_unchanged():
+    names = ["OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS"]
+    before = {name: os.environ.get(name) for name in names}
+    seen = list(ProcessBackend(1).map_unordered(os.getenv, names))
+    assert seen == [before[name] or "1" for name in names]
+    assert {name: os.environ.get(name) for name in names} == before
