@@ -18,6 +18,7 @@ import math
 import os
 import sys
 import tempfile
+import xml.etree.ElementTree as ET
 from abc import ABC, abstractmethod
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -117,6 +118,50 @@ def load_urdf(client: int, path: Path, scale: float = 1.0) -> int:
         raise ValueError(f"robot URDF {path} could not be loaded by pybullet: {failure}"
                          + (f" ({detail})" if detail else "")) from failure
     return body
+
+
+def husky_urdf_text() -> str:
+    """``husky.urdf`` from ``pybullet_data`` with its frame-only links folded into ``base_link``.
+
+    The IMU mount, top plate, user rail and bumpers are links of their own on fixed joints,
+    with no mass or collision shape: their visuals move into ``base_link`` at the joints'
+    origins and the links go, which leaves the look and the contacts as they were and makes a
+    physics step about a fifth cheaper (five fewer links in pybullet's articulated body). Mesh
+    paths become absolute so that the text loads from anywhere.
+    """
+    robot = ET.parse(HUSKY_URDF).getroot()
+    links = {link.get("name"): link for link in robot.findall("link")}
+    base = links["base_link"]
+    for joint in robot.findall("joint"):
+        parent, child = joint.find("parent"), joint.find("child")
+        if parent is None or child is None or parent.get("link") != "base_link":
+            continue
+        link = links[child.get("link", "")]
+        visuals = link.findall("visual")
+        if (joint.get("type") != "fixed" or link.find("inertial") is not None
+                or link.find("collision") is not None
+                or any(_has_offset(visual.find("origin")) for visual in visuals)):
+            continue
+        origin = joint.find("origin")
+        for visual in visuals:
+            if visual.find("origin") is not None:
+                visual.remove(visual.find("origin"))
+            if origin is not None:
+                visual.insert(0, origin)
+            base.append(visual)
+        robot.remove(link)
+        robot.remove(joint)
+    for mesh in robot.iter("mesh"):
+        mesh.set("filename", str(HUSKY_URDF.parent / mesh.get("filename", "")))
+    return ET.tostring(robot, encoding="unicode")
+
+
+def _has_offset(origin: ET.Element | None) -> bool:
+    """Whether a URDF ``<origin>`` moves or turns its element."""
+    if origin is None:
+        return False
+    return any(float(v) != 0.0 for key in ("xyz", "rpy")
+               for v in origin.get(key, "0 0 0").split())
 
 
 def footprint(client: int, body: int) -> tuple[float, float]:
@@ -296,14 +341,13 @@ class HuskyRobot(Robot):
     """Clearpath's husky from ``pybullet_data``, rescaled so that its footprint has the given
     radius (by default the layout's robot radius, so that it fits the same gaps as the disc).
 
-    Dynamic mode: turn in place towards the step's direction, then drive its length, both by
-    velocity commands to the four wheel joints (skid steering), with proportional control on
-    the heading and the remaining distance. Kinematic mode: the turn and the move are teleports.
+    Dynamic mode: turn in place towards the step's target point, then drive to it, both by
+    velocity commands to the four wheel joints (skid steering); see ``drive``. Kinematic mode:
+    the turn and the move are teleports.
     """
 
     has_heading = True
     name = "husky"
-    reach_margin = 4.0  # measured overshoot of a step is below 3 units
     WHEELS = ("front_left_wheel", "rear_left_wheel", "front_right_wheel", "rear_right_wheel")
     WHEEL_RADIUS = 0.17775
     """Metres at the URDF's own scale (``husky.urdf``)."""
@@ -320,24 +364,42 @@ class HuskyRobot(Robot):
     MAX_SPIN = 8.0
     """rad/s: turn rate command limit."""
     TURN_GAIN = 15.0
-    """1/s: turn rate command per radian of heading error."""
-    DRIVE_GAIN = 8.0
-    """1/s: forward speed command per metre of remaining distance."""
+    """1/s: turn rate command per radian of heading error while turning in place."""
+    STEER_GAIN = 10.0
+    """1/s: turn rate command per radian of heading error while driving."""
+    DRIVE_DECELERATION = 8.0
+    """m/s^2: the forward speed command is at most the speed from which the robot stops in the
+    remaining distance at this deceleration (it brakes at about 10 m/s^2 on the floor)..."""
+    DRIVE_GAIN = 16.0
+    """...and, near the end, this gain (1/s) times the remaining distance in metres."""
     HEADING_TOLERANCE = 0.05
-    """Radians: the turn ends when the heading is this close to the step's direction..."""
+    """Radians: the turn ends when the heading is this close to the bearing of the target..."""
     SETTLED_SPIN = 0.3
     """...and the yaw rate (rad/s) is below this."""
-    DISTANCE_TOLERANCE = 0.1
-    """Maze units: the drive ends when this close to the step's length..."""
+    DISTANCE_TOLERANCE = 0.05
+    """Maze units: the drive ends when the target is this close ahead or behind..."""
     SETTLED_SPEED = 0.1
     """...and the speed (m/s) is below this."""
+    AIM_RADIUS = 1.0
+    """Maze units: closer than this to the target the robot keeps its last bearing instead of
+    re-aiming at a point that is nearly under it."""
+    CONTROL_PERIOD = 2
+    """Physics steps per control update (120 Hz at the default 240 Hz physics); contacts are
+    still watched after every physics step."""
 
     def __init__(self, client: int, radius: float | None = None) -> None:
         super().__init__(client)
-        self._load_scaled(HUSKY_URDF, radius)
+        with tempfile.TemporaryDirectory() as folder:
+            path = Path(folder) / "husky.urdf"
+            path.write_text(husky_urdf_text())
+            self._load_scaled(path, radius)
+        # A skid-steered turn in place swings the base round a pivot near the rear axle, about
+        # half the footprint's radius away: the base may stray the radius from its start.
+        self.reach_margin = self.radius
         names = {pb.getJointInfo(self.body_id, j, physicsClientId=client)[1].decode(): j
                  for j in range(pb.getNumJoints(self.body_id, physicsClientId=client))}
         self._wheels = [names[wheel] for wheel in self.WHEELS]
+        self._wheel_speeds = (math.nan, math.nan)  # the last command sent: (left, right) rad/s
         # husky.urdf gives no inertial data for its frame-only links (footprint, IMU, plates,
         # bumpers); pybullet then assumes 1 kg and 1 kg m^2 each, which makes the robot turn
         # several times slower than its real inertia allows. Make them near massless.
@@ -352,13 +414,21 @@ class HuskyRobot(Robot):
         super().configure(physics)
         self._command(0.0, 0.0)
 
+    def place(self, x: float, y: float, heading: float) -> None:
+        super().place(x, y, heading)
+        self._wheel_speeds = (math.nan, math.nan)  # a restored world may have reset the motors
+
     def _command(self, forward: float, turn: float) -> None:
-        """Wheel speeds for a forward speed (m/s) and a turn rate (rad/s)."""
+        """Wheel speeds for a forward speed (m/s) and a turn rate (rad/s); a command equal to
+        the last one is not sent again."""
         r = self.WHEEL_RADIUS * self.scale
         half_track = self.TRACK * self.scale / 2.0
         top = self.MAX_WHEEL_SPEED
         left = min(top, max(-top, (forward - turn * half_track) / r))
         right = min(top, max(-top, (forward + turn * half_track) / r))
+        if (left, right) == self._wheel_speeds:
+            return
+        self._wheel_speeds = (left, right)
         pb.setJointMotorControlArray(
             self.body_id, self._wheels, pb.VELOCITY_CONTROL,
             targetVelocities=[left, left, right, right], forces=[self.WHEEL_FORCE] * 4,
@@ -366,45 +436,60 @@ class HuskyRobot(Robot):
 
     def drive(self, dx: float, dy: float, watch: World | None,
               stop_on_touch: bool = False) -> bool:
+        """Turn in place towards the target point, the start plus (dx, dy), then drive to it.
+
+        Both phases aim at the point itself, not along the step's direction: a skid-steered
+        turn in place also moves the base (the wheels' pivot is not under it, up to 2 units
+        in a half turn), and aiming along the direction would carry that offset to the end.
+        The turn is proportional control of the heading; the drive commands the speed that can
+        still stop at the point (bounded by ``MAX_SPEED``), steering at it and slowed by the
+        cosine of the heading error. ``max_turn_substeps`` and ``max_drive_substeps`` bound the
+        phases.
+        """
         physics = self._physics
-        target = math.atan2(dy, dx)
-        distance = math.hypot(dx, dy)
-        ux, uy = math.cos(target), math.sin(target)
-        x0, y0, _ = self.pose()
+        client, body = self.client, self.body_id
+        s = METRES_PER_UNIT
+        (x0, y0, _), _ = pb.getBasePositionAndOrientation(body, client)
+        tx, ty = x0 + dx * s, y0 + dy * s  # metres, like everything below
+        bearing = math.atan2(dy, dx)
+        aim, tolerance = self.AIM_RADIUS * s, self.DISTANCE_TOLERANCE * s
         substep = 0
         touched = False
-        for phase, limit in (("turn", physics.max_turn_substeps),
-                             ("drive", physics.max_drive_substeps)):
-            for _ in range(limit):
-                x, y, heading = self.pose()
-                error = wrap_angle(target - heading)
-                speed, spin = self._speeds()
-                if phase == "turn":
+        for turning, limit in ((True, physics.max_turn_substeps),
+                               (False, physics.max_drive_substeps)):
+            end = substep + limit
+            while substep < end:
+                (x, y, _), orientation = pb.getBasePositionAndOrientation(body, client)
+                (vx, vy, _), (_, _, spin) = pb.getBaseVelocity(body, client)
+                heading = _yaw(orientation)
+                ex, ey = tx - x, ty - y
+                if math.hypot(ex, ey) > aim:
+                    bearing = math.atan2(ey, ex)
+                error = wrap_angle(bearing - heading)
+                if turning:
                     if abs(error) < self.HEADING_TOLERANCE and abs(spin) < self.SETTLED_SPIN:
                         break
-                    forward = 0.0
+                    forward, gain = 0.0, self.TURN_GAIN
                 else:
-                    remaining = distance - ((x - x0) * ux + (y - y0) * uy)
-                    if remaining < self.DISTANCE_TOLERANCE and speed < self.SETTLED_SPEED:
+                    remaining = ex * math.cos(heading) + ey * math.sin(heading)
+                    if abs(remaining) < tolerance and math.hypot(vx, vy) < self.SETTLED_SPEED:
                         break
-                    forward = min(self.MAX_SPEED, max(
-                        -self.MAX_SPEED, self.DRIVE_GAIN * remaining * METRES_PER_UNIT))
-                turn = min(self.MAX_SPIN, max(-self.MAX_SPIN, self.TURN_GAIN * error))
-                self._command(forward, turn)
-                pb.stepSimulation(physicsClientId=self.client)
-                substep += 1
-                if watch is not None and substep > 1 and not touched:
-                    touched = watch.touching(self.body_id)
-                    if touched and stop_on_touch:
-                        self._command(0.0, 0.0)
-                        return True
+                    speed = min(self.MAX_SPEED,
+                                math.sqrt(2.0 * self.DRIVE_DECELERATION * abs(remaining)),
+                                self.DRIVE_GAIN * abs(remaining))
+                    forward = math.copysign(speed, remaining) * max(0.0, math.cos(error))
+                    gain = self.STEER_GAIN
+                self._command(forward, min(self.MAX_SPIN, max(-self.MAX_SPIN, gain * error)))
+                for _ in range(self.CONTROL_PERIOD):
+                    pb.stepSimulation(client)
+                    substep += 1
+                    if watch is not None and substep > 1 and not touched:
+                        touched = watch.touching(body)
+                        if touched and stop_on_touch:
+                            self._command(0.0, 0.0)
+                            return True
         self._command(0.0, 0.0)
-        return touched or (watch is not None and watch.touching_now(self.body_id))
-
-    def _speeds(self) -> tuple[float, float]:
-        """(horizontal speed in m/s, yaw rate in rad/s) of the base."""
-        linear, angular = pb.getBaseVelocity(self.body_id, physicsClientId=self.client)
-        return math.hypot(linear[0], linear[1]), angular[2]
+        return touched or (watch is not None and watch.touching_now(body))
 
 
 def make_robot(spec: str | Path, client: int, radius: float | None) -> Robot:

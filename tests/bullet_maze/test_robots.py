@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from bullet_maze import Action, BulletMazeEnv
+from bullet_maze.actions import DIRECTIONS
 
 BOX_URDF = """<?xml version="1.0"?>
 <robot name="crate">
@@ -67,10 +68,30 @@ def test_husky_dynamic_step_turns_then_drives(make_env: Callable[..., gym.Env]) 
         new, reward, _, _, info = env.step(action)
         assert not info["collision"]
         assert reward == pytest.approx(-0.01)
-        assert abs(math.remainder(new[2] - heading, 2 * math.pi)) < 0.1
-        assert np.hypot(*(new[:2] - obs[:2])) == pytest.approx(5.0, abs=1.0)
+        # It faces the move (aiming at the target from where the turn left it)...
+        assert abs(math.remainder(new[2] - heading, 2 * math.pi)) < 0.3
+        # ...and stops at the target.
+        target = obs[:2] + 5.0 * DIRECTIONS[action]
+        assert np.hypot(*(new[:2] - target)) < 0.3
         obs = new
     assert env.unwrapped.robot.joint_states() != wheels  # the wheels turned
+
+
+def test_husky_dynamic_steps_end_at_their_targets(make_env: Callable[..., gym.Env]) -> None:
+    # A turn in place swings the husky's base round a pivot near its rear axle (up to 5 units
+    # in a half turn); the drive aims at the step's target point, so the swing does not stay.
+    env = make_env(maze="open", robot="husky", mode="dynamic", noise_variance=0.0)
+    obs, _ = env.reset(seed=0, options={"start": (150.0, 150.0, math.pi / 2)})
+    errors, lengths = [], []
+    for action in np.random.default_rng(1).integers(0, 4, 20):
+        new, _, _, _, info = env.step(action)
+        assert not info["collision"]
+        errors.append(np.hypot(*(new[:2] - obs[:2] - 5.0 * DIRECTIONS[action])))
+        lengths.append(np.hypot(*(new[:2] - obs[:2])))
+        obs = new
+    assert np.mean(lengths) == pytest.approx(5.0, abs=0.05)
+    assert np.mean(errors) < 0.1
+    assert max(errors) < 1.0  # the drive stops re-aiming within AIM_RADIUS of the target
 
 
 def test_husky_dynamic_collision_reverts(make_env: Callable[..., gym.Env]) -> None:
