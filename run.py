@@ -330,7 +330,7 @@ def cmd_experiment(args: argparse.Namespace) -> int:
         runner.prepare_folder(config, out)
         only = runner.select_strategies(config, args.only)
         todo = runner.pending_runs(config, out, only)
-        total = len([s for s in runner.plan(config) if only is None or s.strategy.name in only])
+        total = len(runner.plan(config, only))
         workers = args.workers or default_workers()
         backend = make_backend(args.backend, workers, args.address)
         chosen = len(only) if only is not None else len(config.strategies)

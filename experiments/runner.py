@@ -45,12 +45,14 @@ class RunSpec:
 Task = Callable[[RunSpec], store.RunResult]
 
 
-def plan(config: ExperimentConfig) -> list[RunSpec]:
-    """Every run of the experiment, run index first so that partial results are balanced."""
+def plan(config: ExperimentConfig, only: Collection[str] | None = None) -> list[RunSpec]:
+    """Every run of the experiment (of the strategies in ``only``, if given), run index first
+    so that partial results are balanced."""
     return [
         RunSpec(config, strategy, index, run_seed(config.seed, index))
         for index in range(config.runs)
         for strategy in config.strategies
+        if only is None or strategy.name in only
     ]
 
 
@@ -91,9 +93,7 @@ def pending_runs(config: ExperimentConfig, out_dir: Path,
                  only: Collection[str] | None = None) -> list[RunSpec]:
     """The runs of ``config`` (of the strategies in ``only``, if given) not in ``out_dir`` yet."""
     run_dir = out_dir / RUN_DIR
-    return [spec for spec in plan(config)
-            if (only is None or spec.strategy.name in only)
-            and not store.is_finished(run_dir, spec.name)]
+    return [spec for spec in plan(config, only) if not store.is_finished(run_dir, spec.name)]
 
 
 def run_experiment(
