@@ -42,8 +42,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if getattr(args, "address", None) and args.backend != "ray":
         parser.error("argument --address: only applies to --backend ray")
-    logging.basicConfig(level=logging.DEBUG if args.verbose else logging.WARNING,
-                        format="%(levelname)s %(name)s: %(message)s")
+    logging.basicConfig(
+        level=logging.DEBUG if args.verbose else logging.WARNING,
+        format="%(levelname)s %(name)s: %(message)s",
+    )
     command = args.command or "default"
     try:
         return COMMANDS[command](args)
@@ -58,125 +60,223 @@ def main(argv: Sequence[str] | None = None) -> int:
 def build_parser() -> argparse.ArgumentParser:
     """The command line: the default job and the four subcommands."""
     parser = argparse.ArgumentParser(
-        prog="run.py", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+        prog="run.py", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
-    parser.set_defaults(command=None, config=DEFAULT_CONFIG, strategy=None, seed=None,
-                        episodes=None, time_budget=None, out=None, progress=True, maze=None,
-                        robot=None, mode=None, max_episode_steps=None, exploration=None,
-                        param=[], agent_param=[])
+    parser.set_defaults(
+        command=None,
+        config=DEFAULT_CONFIG,
+        strategy=None,
+        seed=None,
+        episodes=None,
+        time_budget=None,
+        out=None,
+        progress=True,
+        maze=None,
+        robot=None,
+        mode=None,
+        max_episode_steps=None,
+        exploration=None,
+        param=[],
+        agent_param=[],
+    )
     sub = parser.add_subparsers(dest="command", metavar="SUBCOMMAND")
 
     train = sub.add_parser(
-        "train", help="train one agent (one strategy, one seed, one maze) and save it",
+        "train",
+        help="train one agent (one strategy, one seed, one maze) and save it",
         description="Train one agent and write its folder: episodes.csv, agent.npz, "
-                    "config.toml, learning_curve.png, partition.png.")
+        "config.toml, learning_curve.png, partition.png.",
+    )
     _add_config_source(train)
-    train.add_argument("--strategy", metavar="NAME",
-                       help="strategy of the config file to train (default: its first)")
-    train.add_argument("--exploration", metavar="NAME",
-                       help="replace the strategy's exploration (epsilon-greedy, adaptive, tabu, "
-                            "adaptive+tabu, vdbe, ...); its parameters come from --param")
-    train.add_argument("--param", action="append", metavar="KEY=VALUE",
-                       help="exploration parameter, e.g. --param epsilon=0.05 (repeatable)")
-    train.add_argument("--agent-param", action="append", metavar="KEY=VALUE",
-                       help="agent config field (TreeConfig), e.g. --agent-param alpha=0.2")
-    train.add_argument("--seed", type=_non_negative, metavar="N",
-                       help="run seed (default: run 0 of the config's seed); an experiment's "
-                            "run <strategy>__<seed> is reproduced by --strategy and --seed")
-    train.add_argument("--episodes", type=_positive, metavar="N",
-                       help="episodes to train (default: the config's)")
-    train.add_argument("--time-budget", type=_seconds, metavar="SECONDS",
-                       help="stop after the episode that passes this wall time (default: the "
-                            "config's time_budget_s; 0: no budget)")
+    train.add_argument(
+        "--strategy",
+        metavar="NAME",
+        help="strategy of the config file to train (default: its first)",
+    )
+    train.add_argument(
+        "--exploration",
+        metavar="NAME",
+        help="replace the strategy's exploration (epsilon-greedy, adaptive, tabu, "
+        "adaptive+tabu, vdbe, ...); its parameters come from --param",
+    )
+    train.add_argument(
+        "--param",
+        action="append",
+        metavar="KEY=VALUE",
+        help="exploration parameter, e.g. --param epsilon=0.05 (repeatable)",
+    )
+    train.add_argument(
+        "--agent-param",
+        action="append",
+        metavar="KEY=VALUE",
+        help="agent config field (TreeConfig), e.g. --agent-param alpha=0.2",
+    )
+    train.add_argument(
+        "--seed",
+        type=_non_negative,
+        metavar="N",
+        help="run seed (default: run 0 of the config's seed); an experiment's "
+        "run <strategy>__<seed> is reproduced by --strategy and --seed",
+    )
+    train.add_argument(
+        "--episodes", type=_positive, metavar="N", help="episodes to train (default: the config's)"
+    )
+    train.add_argument(
+        "--time-budget",
+        type=_seconds,
+        metavar="SECONDS",
+        help="stop after the episode that passes this wall time (default: the "
+        "config's time_budget_s; 0: no budget)",
+    )
     _add_env_options(train)
     _add_output_options(train, "results/<maze>__<strategy>__<seed>/")
 
     experiment = sub.add_parser(
-        "experiment", help="run an experiment file (strategies x runs) and write its report",
+        "experiment",
+        help="run an experiment file (strategies x runs) and write its report",
         description="Run every (strategy, run) of an experiment file in parallel, store each "
-                    "finished run atomically (an interrupted experiment resumes where it "
-                    "stopped) and write report.md, figure4.png, leaves.png, summary.csv.")
-    experiment.add_argument("config", metavar="CONFIG",
-                            help="experiment TOML: a path or a name in experiments/ "
-                                 "(paper_fig4, quick)")
-    experiment.add_argument("--runs", type=_positive, metavar="N",
-                            help="runs per strategy (default: the file's)")
-    experiment.add_argument("--episodes", type=_positive, metavar="N",
-                            help="episodes per run (default: the file's)")
-    experiment.add_argument("--max-episode-steps", type=_positive, metavar="N",
-                            help="episode cap (default: the file's)")
-    experiment.add_argument("--seed", type=_non_negative, metavar="N",
-                            help="experiment seed (default: the file's)")
-    experiment.add_argument("--workers", type=_positive, metavar="N",
-                            help=f"parallel runs (default: all cores, here {default_workers()})")
-    experiment.add_argument("--backend", choices=BACKENDS, default="process",
-                            help="process: local process pool (default); ray: Ray (local "
-                                 "instance, or --address); serial: in this process")
-    experiment.add_argument("--address", metavar="ADDRESS",
-                            help="Ray cluster to join (e.g. auto, ray://host:10001); without it "
-                                 "--backend ray starts a local instance")
-    experiment.add_argument("--only", type=_names, metavar="NAME[,NAME...]",
-                            help="compute only these strategies' runs (comma-separated names "
-                                 "from the file); the report covers every finished run, and a "
-                                 "later run without --only completes the experiment")
-    experiment.add_argument("--report-only", action="store_true",
-                            help="compute nothing; write the report of the finished runs")
+        "finished run atomically (an interrupted experiment resumes where it "
+        "stopped) and write report.md, figure4.png, leaves.png, summary.csv.",
+    )
+    experiment.add_argument(
+        "config",
+        metavar="CONFIG",
+        help="experiment TOML: a path or a name in experiments/ (paper_fig4, quick)",
+    )
+    experiment.add_argument(
+        "--runs", type=_positive, metavar="N", help="runs per strategy (default: the file's)"
+    )
+    experiment.add_argument(
+        "--episodes", type=_positive, metavar="N", help="episodes per run (default: the file's)"
+    )
+    experiment.add_argument(
+        "--max-episode-steps", type=_positive, metavar="N", help="episode cap (default: the file's)"
+    )
+    experiment.add_argument(
+        "--seed", type=_non_negative, metavar="N", help="experiment seed (default: the file's)"
+    )
+    experiment.add_argument(
+        "--workers",
+        type=_positive,
+        metavar="N",
+        help=f"parallel runs (default: all cores, here {default_workers()})",
+    )
+    experiment.add_argument(
+        "--backend",
+        choices=BACKENDS,
+        default="process",
+        help="process: local process pool (default); ray: Ray (local "
+        "instance, or --address); serial: in this process",
+    )
+    experiment.add_argument(
+        "--address",
+        metavar="ADDRESS",
+        help="Ray cluster to join (e.g. auto, ray://host:10001); without it "
+        "--backend ray starts a local instance",
+    )
+    experiment.add_argument(
+        "--only",
+        type=_names,
+        metavar="NAME[,NAME...]",
+        help="compute only these strategies' runs (comma-separated names "
+        "from the file); the report covers every finished run, and a "
+        "later run without --only completes the experiment",
+    )
+    experiment.add_argument(
+        "--report-only",
+        action="store_true",
+        help="compute nothing; write the report of the finished runs",
+    )
     _add_output_options(experiment, "results/<name>[__<episodes>ep][__cap<N>]/")
 
     evaluate = sub.add_parser(
-        "evaluate", help="run a saved agent's greedy policy, possibly in another mode or robot",
+        "evaluate",
+        help="run a saved agent's greedy policy, possibly in another mode or robot",
         description="Run a saved agent's greedy policy for N episodes and report its success "
-                    "rate and steps. A disc-trained agent observes (x, y); with a robot that "
-                    "also observes its heading (husky) the heading is dropped (the policy is a "
-                    "function of position).")
-    evaluate.add_argument("agent", metavar="AGENT",
-                          help="agent.npz file, or a train folder that holds one")
-    evaluate.add_argument("--episodes", type=_positive, default=20, metavar="N",
-                          help="greedy episodes (default: 20)")
-    evaluate.add_argument("--seed", type=_non_negative, default=0, metavar="N",
-                          help="seed of the first reset (default: 0)")
+        "rate and steps. A disc-trained agent observes (x, y); with a robot that "
+        "also observes its heading (husky) the heading is dropped (the policy is a "
+        "function of position).",
+    )
+    evaluate.add_argument(
+        "agent", metavar="AGENT", help="agent.npz file, or a train folder that holds one"
+    )
+    evaluate.add_argument(
+        "--episodes", type=_positive, default=20, metavar="N", help="greedy episodes (default: 20)"
+    )
+    evaluate.add_argument(
+        "--seed",
+        type=_non_negative,
+        default=0,
+        metavar="N",
+        help="seed of the first reset (default: 0)",
+    )
     _add_config_source(evaluate)
     _add_env_options(evaluate)
 
     render = sub.add_parser(
-        "render", help="GIF of one greedy episode, top-down, over the learned partition",
+        "render",
+        help="GIF of one greedy episode, top-down, over the learned partition",
         description="Write a GIF of one greedy episode seen from above, with the agent's "
-                    "partition (value colours, greedy arrows) drawn underneath.")
-    render.add_argument("agent", metavar="AGENT",
-                        help="agent.npz file, or a train folder that holds one")
-    render.add_argument("--out", type=Path, metavar="FILE",
-                        help="GIF to write (default: episode.gif beside the agent)")
-    render.add_argument("--seed", type=_non_negative, default=0, metavar="N",
-                        help="seed of the reset (default: 0)")
+        "partition (value colours, greedy arrows) drawn underneath.",
+    )
+    render.add_argument(
+        "agent", metavar="AGENT", help="agent.npz file, or a train folder that holds one"
+    )
+    render.add_argument(
+        "--out",
+        type=Path,
+        metavar="FILE",
+        help="GIF to write (default: episode.gif beside the agent)",
+    )
+    render.add_argument(
+        "--seed", type=_non_negative, default=0, metavar="N", help="seed of the reset (default: 0)"
+    )
     render.add_argument("--fps", type=_positive, default=15, help="frames per second")
-    render.add_argument("--max-frames", type=_positive, default=150, metavar="N",
-                        help="longest GIF; long episodes are subsampled (default: 150)")
+    render.add_argument(
+        "--max-frames",
+        type=_positive,
+        default=150,
+        metavar="N",
+        help="longest GIF; long episodes are subsampled (default: 150)",
+    )
     _add_config_source(render)
     _add_env_options(render)
     return parser
 
 
 def _add_config_source(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--config", default=DEFAULT_CONFIG, metavar="CONFIG",
-                        help="experiment file giving the environment and agent settings "
-                             f"(default: {DEFAULT_CONFIG}; for a saved agent, the config.toml "
-                             "beside it when there is one)")
+    parser.add_argument(
+        "--config",
+        default=DEFAULT_CONFIG,
+        metavar="CONFIG",
+        help="experiment file giving the environment and agent settings "
+        f"(default: {DEFAULT_CONFIG}; for a saved agent, the config.toml "
+        "beside it when there is one)",
+    )
 
 
 def _add_env_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--maze", metavar="NAME", help="maze layout name or TOML path")
     parser.add_argument("--robot", metavar="NAME", help="disc, husky or a URDF path")
-    parser.add_argument("--mode", choices=config_module.MODES,
-                        help="kinematic (fast) or dynamic (physics)")
-    parser.add_argument("--max-episode-steps", type=_positive, metavar="N",
-                        help="episode cap (default: the config's, 5000)")
+    parser.add_argument(
+        "--mode", choices=config_module.MODES, help="kinematic (fast) or dynamic (physics)"
+    )
+    parser.add_argument(
+        "--max-episode-steps",
+        type=_positive,
+        metavar="N",
+        help="episode cap (default: the config's, 5000)",
+    )
 
 
 def _add_output_options(parser: argparse.ArgumentParser, default: str) -> None:
-    parser.add_argument("--out", type=Path, metavar="DIR", help=f"results folder (default: "
-                                                                 f"{default})")
-    parser.add_argument("--no-progress", dest="progress", action="store_false",
-                        help="no progress bar")
+    parser.add_argument(
+        "--out", type=Path, metavar="DIR", help=f"results folder (default: {default})"
+    )
+    parser.add_argument(
+        "--no-progress", dest="progress", action="store_false", help="no progress bar"
+    )
 
 
 def _names(text: str) -> list[str]:
@@ -235,24 +335,33 @@ def _train_setup(args: argparse.Namespace) -> tuple[ExperimentConfig, StrategySp
     strategy = config.strategy(args.strategy) if args.strategy else config.strategies[0]
     if args.exploration or args.param:
         strategy = dataclasses.replace(
-            strategy, exploration=args.exploration or strategy.exploration,
-            exploration_params=(_key_values(args.param, "--param") if args.exploration
-                                else {**strategy.exploration_params,
-                                      **_key_values(args.param, "--param")}))
+            strategy,
+            exploration=args.exploration or strategy.exploration,
+            exploration_params=(
+                _key_values(args.param, "--param")
+                if args.exploration
+                else {**strategy.exploration_params, **_key_values(args.param, "--param")}
+            ),
+        )
         if args.exploration and not args.strategy:
             strategy = dataclasses.replace(strategy, name=args.exploration)
     if args.agent_param:
         strategy = dataclasses.replace(
-            strategy, config={**strategy.config,
-                              **_key_values(args.agent_param, "--agent-param")})
-    env_changes = {k: v for k, v in (("maze", args.maze), ("robot", args.robot),
-                                     ("mode", args.mode)) if v is not None}
+            strategy, config={**strategy.config, **_key_values(args.agent_param, "--agent-param")}
+        )
+    env_changes = {
+        k: v
+        for k, v in (("maze", args.maze), ("robot", args.robot), ("mode", args.mode))
+        if v is not None
+    }
     env = dataclasses.replace(config.env, **env_changes)
     budget = config.time_budget_s if args.time_budget is None else (args.time_budget or None)
-    config = dataclasses.replace(config, strategies=(strategy,), baseline=None, runs=1, env=env,
-                                 time_budget_s=budget)
-    config = config_module.with_overrides(config, episodes=args.episodes,
-                                          max_episode_steps=args.max_episode_steps)
+    config = dataclasses.replace(
+        config, strategies=(strategy,), baseline=None, runs=1, env=env, time_budget_s=budget
+    )
+    config = config_module.with_overrides(
+        config, episodes=args.episodes, max_episode_steps=args.max_episode_steps
+    )
     seed = run_seed(config.seed, 0) if args.seed is None else args.seed
     return config, strategy, seed
 
@@ -267,19 +376,29 @@ def cmd_train(args: argparse.Namespace) -> int:
     out = args.out or RESULTS_DIR / f"{Path(config.env.maze).stem}__{strategy.name}__{seed}"
     budget = config.time_budget_s
     recent: list[int] = []
-    with tqdm(total=config.episodes, unit="ep", disable=not args.progress, dynamic_ncols=True,
-              mininterval=0.5, delay=0.1) as bar:
+    with tqdm(
+        total=config.episodes,
+        unit="ep",
+        disable=not args.progress,
+        dynamic_ncols=True,
+        mininterval=0.5,
+        delay=0.1,
+    ) as bar:
+
         def on_start(optimal: float) -> None:
-            bar.write(f"training {strategy.name} in maze {config.env.maze!r} "
-                      f"({config.env.robot}, {config.env.mode}), seed {seed}: up to "
-                      f"{config.episodes} episodes" + (f" or {budget:g} s" if budget else "")
-                      + f"; optimal {optimal:g} steps", file=sys.stdout)
+            bar.write(
+                f"training {strategy.name} in maze {config.env.maze!r} "
+                f"({config.env.robot}, {config.env.mode}), seed {seed}: up to "
+                f"{config.episodes} episodes"
+                + (f" or {budget:g} s" if budget else "")
+                + f"; optimal {optimal:g} steps",
+                file=sys.stdout,
+            )
 
         def on_episode(row: tuple) -> None:
             recent.append(row[1])
             bar.update(1)
-            bar.set_postfix(avg_steps=f"{np.mean(recent[-100:]):.0f}", leaves=row[5],
-                            refresh=False)
+            bar.set_postfix(avg_steps=f"{np.mean(recent[-100:]):.0f}", leaves=row[5], refresh=False)
 
         result = train_and_save(config, seed, out, on_start, on_episode)
     _print_training_summary(result)
@@ -292,18 +411,23 @@ def _print_training_summary(result: Any) -> None:
     success = np.array([r[3] for r in rows], dtype=bool)
     last, count = slice(-100, None), min(100, len(rows))
     stop = "stopped by the time budget" if training.stopped_by_budget else "all episodes done"
-    print(f"\n{len(rows)} episodes in {training.wall_time_s:.1f} s ({stop}), "
-          f"{training.steps_per_second:,.0f} steps/s (env + agent)")
-    print(f"success rate: {success.mean():.1%} overall, {success[last].mean():.1%} in the "
-          f"last {count} episodes")
+    print(
+        f"\n{len(rows)} episodes in {training.wall_time_s:.1f} s ({stop}), "
+        f"{training.steps_per_second:,.0f} steps/s (env + agent)"
+    )
+    print(
+        f"success rate: {success.mean():.1%} overall, {success[last].mean():.1%} in the "
+        f"last {count} episodes"
+    )
     ratio = f" ({steps[last].mean() / optimal:.2f}x)" if optimal > 0 else ""
-    print(f"average steps, last {count} episodes: {steps[last].mean():.1f}{ratio} vs optimal "
-          f"{optimal:g}")
+    print(
+        f"average steps, last {count} episodes: {steps[last].mean():.1f}{ratio} vs optimal "
+        f"{optimal:g}"
+    )
     outcome = "reached the goal" if result.greedy.success else "did not reach the goal"
     print(f"greedy policy: {outcome} in {result.greedy.steps} steps")
     print(f"leaves: {result.leaves}")
-    print(f"results: {result.out}/ (episodes.csv, learning_curve.png, partition.png, "
-          "agent.npz)")
+    print(f"results: {result.out}/ (episodes.csv, learning_curve.png, partition.png, agent.npz)")
 
 
 def cmd_default(args: argparse.Namespace) -> int:
@@ -320,9 +444,13 @@ def cmd_experiment(args: argparse.Namespace) -> int:
     from experiments.report import write_report
 
     file_config = config
-    config = config_module.with_overrides(config, runs=args.runs, episodes=args.episodes,
-                                          seed=args.seed,
-                                          max_episode_steps=args.max_episode_steps)
+    config = config_module.with_overrides(
+        config,
+        runs=args.runs,
+        episodes=args.episodes,
+        seed=args.seed,
+        max_episode_steps=args.max_episode_steps,
+    )
     out = args.out or RESULTS_DIR / _experiment_folder(file_config, config)
     if not args.report_only:
         factory.check_agent_params(config)
@@ -334,23 +462,33 @@ def cmd_experiment(args: argparse.Namespace) -> int:
         workers = args.workers or default_workers()
         backend = make_backend(args.backend, workers, args.address)
         chosen = len(only) if only is not None else len(config.strategies)
-        print(f"{config.name}: {chosen} strategies x {config.runs} runs x "
-              f"{config.episodes} episodes (cap {config.env.max_episode_steps}, optimal "
-              f"{optimal:g} steps); {total - len(todo)} of {total} runs already done; "
-              f"backend {args.backend}, {backend.workers} workers; results in {out}/")
+        print(
+            f"{config.name}: {chosen} strategies x {config.runs} runs x "
+            f"{config.episodes} episodes (cap {config.env.max_episode_steps}, optimal "
+            f"{optimal:g} steps); {total - len(todo)} of {total} runs already done; "
+            f"backend {args.backend}, {backend.workers} workers; results in {out}/"
+        )
         start = time.perf_counter()
-        with tqdm(total=total, initial=total - len(todo), unit="run", disable=not args.progress,
-                  dynamic_ncols=True) as bar:
+        with tqdm(
+            total=total,
+            initial=total - len(todo),
+            unit="run",
+            disable=not args.progress,
+            dynamic_ncols=True,
+        ) as bar:
+
             def on_result(result: Any) -> None:
                 bar.update(1)
                 bar.set_postfix(last=result.name, steps_per_s=f"{result.steps_per_second:,.0f}")
-            computed = runner.run_experiment(config, out, backend, on_result=on_result,
-                                             only=only)
+
+            computed = runner.run_experiment(config, out, backend, on_result=on_result, only=only)
         elapsed = time.perf_counter() - start
         if computed:
             rate = sum(r.env_steps for r in computed) / sum(r.wall_time_s for r in computed)
-            print(f"computed {len(computed)} runs in {elapsed:.1f} s; {rate:,.0f} steps/s per "
-                  f"worker (env + agent)")
+            print(
+                f"computed {len(computed)} runs in {elapsed:.1f} s; {rate:,.0f} steps/s per "
+                f"worker (env + agent)"
+            )
     try:
         report = write_report(config, out)
     except ValueError as error:
@@ -373,16 +511,22 @@ def _experiment_folder(file_config: ExperimentConfig, config: ExperimentConfig) 
 
 def _print_experiment_summary(report: Any) -> None:
     width = max([len("strategy"), *(len(s.strategy) for s in report.summaries)])
-    print(f"\n{'strategy':<{width}} {'runs':>4} {'final steps':>11} {'/optimal':>8} "
-          f"{'success':>7} {'converged':>9} {'P(impr.)':>8}")
+    print(
+        f"\n{'strategy':<{width}} {'runs':>4} {'final steps':>11} {'/optimal':>8} "
+        f"{'success':>7} {'converged':>9} {'P(impr.)':>8}"
+    )
     for s in report.summaries:
         final = float(np.mean(s.final_steps))
         ratio = final / report.optimal_steps if report.optimal_steps > 0 else math.nan
-        print(f"{s.strategy:<{width}} {s.runs:>4} {final:>11.1f} {ratio:>8.2f} "
-              f"{np.mean(s.success_rate):>7.1%} {s.converged_runs:>5}/{s.runs:<3} "
-              f"{s.p_improvement:>8.2f}")
-    print(f"\nreport: {report.markdown} (figures: "
-          f"{', '.join(p.name for p in report.figures)}; table: {report.summary_csv.name})")
+        print(
+            f"{s.strategy:<{width}} {s.runs:>4} {final:>11.1f} {ratio:>8.2f} "
+            f"{np.mean(s.success_rate):>7.1%} {s.converged_runs:>5}/{s.runs:<3} "
+            f"{s.p_improvement:>8.2f}"
+        )
+    print(
+        f"\nreport: {report.markdown} (figures: "
+        f"{', '.join(p.name for p in report.figures)}; table: {report.summary_csv.name})"
+    )
 
 
 def _load_for_playback(args: argparse.Namespace) -> tuple[Any, ExperimentConfig, Path]:
@@ -396,9 +540,13 @@ def _load_for_playback(args: argparse.Namespace) -> tuple[Any, ExperimentConfig,
         raise FileNotFoundError(f"agent file not found: {path}")
     beside = path.parent / "config.toml"
     config = config_module.load_config(
-        beside if beside.is_file() and args.config == DEFAULT_CONFIG else args.config)
-    env_changes = {k: v for k, v in (("maze", args.maze), ("robot", args.robot),
-                                     ("mode", args.mode)) if v is not None}
+        beside if beside.is_file() and args.config == DEFAULT_CONFIG else args.config
+    )
+    env_changes = {
+        k: v
+        for k, v in (("maze", args.maze), ("robot", args.robot), ("mode", args.mode))
+        if v is not None
+    }
     config = dataclasses.replace(config, env=dataclasses.replace(config.env, **env_changes))
     config = config_module.with_overrides(config, max_episode_steps=args.max_episode_steps)
     try:
@@ -418,8 +566,10 @@ def _playback_env(agent: Any, config: ExperimentConfig, render_mode: str | None 
         env = factory.ProjectObservation(env, dims)
     elif env.observation_space.shape[0] < dims:
         env.close()
-        raise ConfigError(f"the agent observes {dims} values but robot "
-                          f"{config.env.robot!r} gives {env.observation_space.shape[0]}")
+        raise ConfigError(
+            f"the agent observes {dims} values but robot "
+            f"{config.env.robot!r} gives {env.observation_space.shape[0]}"
+        )
     return env
 
 
@@ -439,18 +589,24 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     finally:
         env.close()
     steps = result.steps
-    print(f"{path}: {args.episodes} greedy episodes in maze {config.env.maze!r}, robot "
-          f"{config.env.robot!r}, mode {config.env.mode!r} (cap {config.env.max_episode_steps})"
-          + ("; observation projected to (x, y), heading dropped" if projected else ""))
+    print(
+        f"{path}: {args.episodes} greedy episodes in maze {config.env.maze!r}, robot "
+        f"{config.env.robot!r}, mode {config.env.mode!r} (cap {config.env.max_episode_steps})"
+        + ("; observation projected to (x, y), heading dropped" if projected else "")
+    )
     print(f"success rate: {result.success_rate:.1%}")
     reached = result.successful_steps
     if reached.size:
-        print(f"steps to goal (successful episodes): mean {reached.mean():.1f}, median "
-              f"{np.median(reached):.0f}, min {reached.min()}, max {reached.max()}; optimal "
-              f"{optimal:g}")
+        print(
+            f"steps to goal (successful episodes): mean {reached.mean():.1f}, median "
+            f"{np.median(reached):.0f}, min {reached.min()}, max {reached.max()}; optimal "
+            f"{optimal:g}"
+        )
     print(f"steps, capped episodes counted at the cap: mean {steps.mean():.1f}")
-    print(f"collisions per episode: {np.mean([e.collisions for e in result.episodes]):.1f}; "
-          f"{steps.sum() / elapsed:,.0f} steps/s")
+    print(
+        f"collisions per episode: {np.mean([e.collisions for e in result.episodes]):.1f}; "
+        f"{steps.sum() / elapsed:,.0f} steps/s"
+    )
     return 0
 
 
@@ -469,14 +625,27 @@ def cmd_render(args: argparse.Namespace) -> int:
         env.close()
     out = args.out or path.parent / "episode.gif"
     outcome = "reached the goal" if episode.success else "did not reach the goal"
-    render_gif(agent, layout, directions, episode.positions, out, fps=args.fps,
-               max_frames=args.max_frames, title=f"{agent.n_leaves} leaves,")
+    render_gif(
+        agent,
+        layout,
+        directions,
+        episode.positions,
+        out,
+        fps=args.fps,
+        max_frames=args.max_frames,
+        title=f"{agent.n_leaves} leaves,",
+    )
     print(f"{out}: {episode.steps} steps, {outcome} ({config.env.robot}, {config.env.mode})")
     return 0
 
 
-COMMANDS = {"default": cmd_default, "train": cmd_train, "experiment": cmd_experiment,
-            "evaluate": cmd_evaluate, "render": cmd_render}
+COMMANDS = {
+    "default": cmd_default,
+    "train": cmd_train,
+    "experiment": cmd_experiment,
+    "evaluate": cmd_evaluate,
+    "render": cmd_render,
+}
 
 
 if __name__ == "__main__":

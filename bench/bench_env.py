@@ -131,8 +131,7 @@ def paired_ratio(rates: dict[str, list[float]], slow: str, fast: str) -> tuple[f
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=20_000, help="kinematic steps per round")
-    parser.add_argument("--rounds", type=int, default=21,
-                        help="interleaved rounds; medians count")
+    parser.add_argument("--rounds", type=int, default=21, help="interleaved rounds; medians count")
     parser.add_argument("--cycles", type=int, default=1000, help="create/close cycles")
     parser.add_argument("--quick", action="store_true", help="a short run for a smoke test")
     parser.add_argument("--wall", action="store_true", help="wall-clock time, not CPU time")
@@ -162,7 +161,8 @@ def speed(steps: int, rounds: int, wall: bool) -> None:
         "raw stepSimulation, same substeps": raw_runner(dyn, default),
         f"raw stepSimulation, {2 * default} substeps": raw_runner(dyn, 2 * default),
         f"dynamic, disc, {2 * default} substeps": env_runner(
-            "BulletMaze-v0", dyn, mode="dynamic", substeps=2 * default),
+            "BulletMaze-v0", dyn, mode="dynamic", substeps=2 * default
+        ),
         "dynamic, husky": env_runner(
             "BulletMaze-v0", max(10, dyn // 100), mode="dynamic", robot="husky"
         ),
@@ -202,16 +202,26 @@ def speed(steps: int, rounds: int, wall: bool) -> None:
         print(f"  {name:36s} {statistics.median(values):10,.0f}  ({low:,.0f}-{high:,.0f})")
     print("ratios, median of the per-round ratios (quartiles):")
     for label, slow, fast, target in (
-        ("dynamic overhead: env step time / raw physics time", "dynamic, disc",
-         "raw stepSimulation, same substeps", "target <= 1.25"),
-        (f"the same with {2 * default} substeps", f"dynamic, disc, {2 * default} substeps",
-         f"raw stepSimulation, {2 * default} substeps", "target <= 1.25"),
+        (
+            "dynamic overhead: env step time / raw physics time",
+            "dynamic, disc",
+            "raw stepSimulation, same substeps",
+            "target <= 1.25",
+        ),
+        (
+            f"the same with {2 * default} substeps",
+            f"dynamic, disc, {2 * default} substeps",
+            f"raw stepSimulation, {2 * default} substeps",
+            "target <= 1.25",
+        ),
     ):
         median, low, high = paired_ratio(rates, slow, fast)
         print(f"  {label:52s} {median:5.2f}  ({low:.2f}-{high:.2f}; {target})")
     if pointmaze in rates:
-        for label, name, target in (("kinematic / PointMaze", "kinematic, disc", ">= 5"),
-                                    ("dynamic / PointMaze", "dynamic, disc", ">= 1")):
+        for label, name, target in (
+            ("kinematic / PointMaze", "kinematic, disc", ">= 5"),
+            ("dynamic / PointMaze", "dynamic, disc", ">= 1"),
+        ):
             median, low, high = paired_ratio(rates, pointmaze, name)
             print(f"  {label:52s} {median:5.2f}  ({low:.2f}-{high:.2f}; target {target})")
 

@@ -25,8 +25,12 @@ def _register_ids() -> list[str]:
     ids.update({f"BulletMaze-{name}-v0": {"maze": name} for name in available_layouts()})
     for env_id, kwargs in ids.items():
         if env_id not in registry:
-            register(id=env_id, entry_point=ENTRY_POINT, max_episode_steps=MAX_EPISODE_STEPS,
-                     kwargs=kwargs)
+            register(
+                id=env_id,
+                entry_point=ENTRY_POINT,
+                max_episode_steps=MAX_EPISODE_STEPS,
+                kwargs=kwargs,
+            )
     return list(ids)
 
 

@@ -164,15 +164,25 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         if mode not in MODES:
             raise ValueError(f"mode must be one of {list(MODES)}, got {mode!r}")
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode must be None or one of "
-                             f"{self.metadata['render_modes']}, got {render_mode!r}")
+            raise ValueError(
+                f"render_mode must be None or one of "
+                f"{self.metadata['render_modes']}, got {render_mode!r}"
+            )
         if robot_radius is not None and not (
-                isinstance(robot_radius, int | float) and 0 < robot_radius < math.inf):
+            isinstance(robot_radius, int | float) and 0 < robot_radius < math.inf
+        ):
             raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
-        self.task = TaskParams(step_size, noise_variance, goal_reward, collision_reward,
-                               step_reward)
-        self.physics = PhysicsParams(time_step, substeps, solver_iterations,
-                                     revert_on_collision, max_turn_substeps, max_drive_substeps)
+        self.task = TaskParams(
+            step_size, noise_variance, goal_reward, collision_reward, step_reward
+        )
+        self.physics = PhysicsParams(
+            time_step,
+            substeps,
+            solver_iterations,
+            revert_on_collision,
+            max_turn_substeps,
+            max_drive_substeps,
+        )
         self.layout = load_layout(maze)
         self.mode = mode
         self._kinematic = mode == "kinematic"
@@ -187,9 +197,11 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             self.world = World(self._client, self.layout, self.robot.radius)
             self.physics = self._enough_substeps(self.physics)
             pb.setGravity(0.0, 0.0, -9.81, physicsClientId=self._client)
-            pb.setPhysicsEngineParameter(fixedTimeStep=self.physics.time_step,
-                                         numSolverIterations=self.physics.solver_iterations,
-                                         physicsClientId=self._client)
+            pb.setPhysicsEngineParameter(
+                fixedTimeStep=self.physics.time_step,
+                numSolverIterations=self.physics.solver_iterations,
+                physicsClientId=self._client,
+            )
             self.robot.configure(self.physics)
             self.robot.place(*self.layout.start, self.layout.start_heading)
             self._initial_state = pb.saveState(physicsClientId=self._client)
@@ -208,8 +220,10 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         self._has_heading = self.robot.has_heading
         self._human = render_mode == "human"
         self._arena = self.layout.arena
-        self._moves = {action: (float(mx), float(my))
-                       for action, (mx, my) in enumerate(DIRECTIONS * self.task.step_size)}
+        self._moves = {
+            action: (float(mx), float(my))
+            for action, (mx, my) in enumerate(DIRECTIONS * self.task.step_size)
+        }
         self._goal_reward = self.task.goal_reward
         self._collision_reward = self.task.collision_reward
         self._step_reward = self.task.step_reward
@@ -228,13 +242,17 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         if render_mode == "human":
             if not _display_available():
                 # pybullet's GUI would end the whole process without a display.
-                logger.warning("render_mode='human' needs a display; none found (DISPLAY is "
-                               "unset), so the simulation runs headless and shows nothing")
+                logger.warning(
+                    "render_mode='human' needs a display; none found (DISPLAY is "
+                    "unset), so the simulation runs headless and shows nothing"
+                )
                 return pb.connect(pb.DIRECT)
             client = pb.connect(pb.GUI)
             if client < 0:
-                raise RuntimeError("render_mode='human' could not open the pybullet GUI "
-                                   "(pybullet allows one GUI per process)")
+                raise RuntimeError(
+                    "render_mode='human' could not open the pybullet GUI "
+                    "(pybullet allows one GUI per process)"
+                )
             return client
         return pb.connect(pb.DIRECT)
 
@@ -247,15 +265,20 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         needed = math.ceil(longest / self.robot.radius)
         if physics.substeps >= needed:
             return physics
-        logger.info("substeps raised from %d to %d so that no substep moves the robot farther "
-                    "than its radius", physics.substeps, needed)
+        logger.info(
+            "substeps raised from %d to %d so that no substep moves the robot farther "
+            "than its radius",
+            physics.substeps,
+            needed,
+        )
         return dataclasses.replace(physics, substeps=needed)
 
     def _make_robot(self, robot: str | Path, radius: float | None) -> Robot:
         is_path = isinstance(robot, Path) or (isinstance(robot, str) and robot.endswith(".urdf"))
         if not isinstance(robot, str | Path):
-            raise TypeError(f"robot must be 'disc', 'husky' or a URDF path, got "
-                            f"{type(robot).__name__}")
+            raise TypeError(
+                f"robot must be 'disc', 'husky' or a URDF path, got {type(robot).__name__}"
+            )
         if radius is None and not is_path:
             radius = self.layout.robot_radius
         return make_robot(robot, self._client, radius)
@@ -331,8 +354,10 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
 
     def render(self) -> np.ndarray | None:
         if self.render_mode is None:
-            gym.logger.warn("render() called without a render_mode; make the env with "
-                            "render_mode='rgb_array' to get images")
+            gym.logger.warn(
+                "render() called without a render_mode; make the env with "
+                "render_mode='rgb_array' to get images"
+            )
             return None
         if self._client < 0:
             raise RuntimeError("render() called on a closed BulletMazeEnv")
@@ -452,11 +477,14 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         if isinstance(action, np.ndarray) and action.shape == ():
             action = action.item()
         if isinstance(action, bool) or not isinstance(action, int | np.integer):
-            raise TypeError(f"action must be an integer in [0, {len(DIRECTIONS)}) "
-                            f"(bullet_maze.Action), got {action!r}")
+            raise TypeError(
+                f"action must be an integer in [0, {len(DIRECTIONS)}) "
+                f"(bullet_maze.Action), got {action!r}"
+            )
         if not 0 <= action < len(DIRECTIONS):
-            raise ValueError(f"action {action} is not in [0, {len(DIRECTIONS)}) "
-                             f"(UP, DOWN, LEFT, RIGHT)")
+            raise ValueError(
+                f"action {action} is not in [0, {len(DIRECTIONS)}) (UP, DOWN, LEFT, RIGHT)"
+            )
         return int(action)
 
     def _parse_options(
@@ -470,8 +498,9 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             raise TypeError(f"options must be a dict, got {type(options).__name__}")
         unknown = set(options) - {"start", "goal"}
         if unknown:
-            raise ValueError(f"unknown reset option(s) {sorted(unknown)}: allowed are "
-                             f"'start' and 'goal'")
+            raise ValueError(
+                f"unknown reset option(s) {sorted(unknown)}: allowed are 'start' and 'goal'"
+            )
         if options.get("start") is not None:
             values = _finite_numbers(options["start"], "options['start']", (2, 3))
             start = (values[0], values[1])
@@ -480,8 +509,10 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             self._check_inside(start, "options['start']")
             gap = self.world.distance(start[0], start[1], 0.0)
             if gap < CONTACT_TOLERANCE:
-                raise ValueError(f"options['start'] = {start}: a robot of radius "
-                                 f"{self.robot.radius:g} there overlaps a wall or an obstacle")
+                raise ValueError(
+                    f"options['start'] = {start}: a robot of radius "
+                    f"{self.robot.radius:g} there overlaps a wall or an obstacle"
+                )
         if options.get("goal") is not None:
             values = _finite_numbers(options["goal"], "options['goal']", (2,))
             goal = (values[0], values[1])
@@ -489,14 +520,17 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             if float(clearance(layout, np.array(goal))) < 0.0:
                 raise ValueError(f"options['goal'] = {goal} lies inside a wall or an obstacle")
         if math.dist(start, goal) <= layout.goal_radius:
-            raise ValueError(f"options: the start {start} lies inside the goal circle "
-                             f"(centre {goal}, radius {layout.goal_radius:g})")
+            raise ValueError(
+                f"options: the start {start} lies inside the goal circle "
+                f"(centre {goal}, radius {layout.goal_radius:g})"
+            )
         if (start, goal) != (layout.start, layout.goal):
             self._check_reachable(start, goal, options)
         return start, heading, goal
 
-    def _check_reachable(self, start: tuple[float, float], goal: tuple[float, float],
-                         options: dict[str, Any]) -> None:
+    def _check_reachable(
+        self, start: tuple[float, float], goal: tuple[float, float], options: dict[str, Any]
+    ) -> None:
         """A ValueError naming the option unless the robot can get from the start into the goal
         circle (see ``bullet_maze.planning.goal_reachable``: the layout's free regions for this
         radius are computed once, about 30 ms, then each check is a lookup)."""
@@ -505,18 +539,27 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             return
         robot = f"a robot of radius {radius:g}"
         if options.get("goal") is None:
-            raise ValueError(f"options['start'] = {start}: the goal circle around {goal} cannot "
-                             f"be reached from there by {robot}")
-        where = (f"options['start'] = {start}" if options.get("start") is not None
-                 else f"the start {start}")
-        raise ValueError(f"options['goal'] = {goal}: its circle (radius "
-                         f"{self.layout.goal_radius:g}) cannot be reached from {where} by "
-                         f"{robot}")
+            raise ValueError(
+                f"options['start'] = {start}: the goal circle around {goal} cannot "
+                f"be reached from there by {robot}"
+            )
+        where = (
+            f"options['start'] = {start}"
+            if options.get("start") is not None
+            else f"the start {start}"
+        )
+        raise ValueError(
+            f"options['goal'] = {goal}: its circle (radius "
+            f"{self.layout.goal_radius:g}) cannot be reached from {where} by "
+            f"{robot}"
+        )
 
     def _check_inside(self, point: tuple[float, float], name: str) -> None:
         if not self.layout.contains(*point):
-            raise ValueError(f"{name} = {point} lies outside the arena [0, "
-                             f"{self.layout.arena[0]:g}] x [0, {self.layout.arena[1]:g}]")
+            raise ValueError(
+                f"{name} = {point} lies outside the arena [0, "
+                f"{self.layout.arena[0]:g}] x [0, {self.layout.arena[1]:g}]"
+            )
 
 
 def _display_available() -> bool:
@@ -530,11 +573,13 @@ def _finite_numbers(value: Any, name: str, lengths: Sequence[int]) -> list[float
     try:
         values = [float(v) for v in value]
     except (TypeError, ValueError) as err:
-        raise ValueError(f"{name} must be a sequence of {' or '.join(map(str, lengths))} "
-                         f"numbers, got {value!r}") from err
+        raise ValueError(
+            f"{name} must be a sequence of {' or '.join(map(str, lengths))} numbers, got {value!r}"
+        ) from err
     if len(values) not in lengths:
-        raise ValueError(f"{name} must have {' or '.join(map(str, lengths))} numbers, "
-                         f"got {value!r}")
+        raise ValueError(
+            f"{name} must have {' or '.join(map(str, lengths))} numbers, got {value!r}"
+        )
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"{name} must be finite, got {value!r}")
     return values

@@ -30,8 +30,16 @@ DEFAULT_START_SIZE = 20.0
 """Side of the drawn start square when a layout does not give one (maze units)."""
 
 _SCHEMA: dict[str, dict[str, bool]] = {
-    "": {"name": False, "description": False, "robot_radius": False, "arena": True,
-         "start": True, "goal": True, "obstacles": False, "walls": False},
+    "": {
+        "name": False,
+        "description": False,
+        "robot_radius": False,
+        "arena": True,
+        "start": True,
+        "goal": True,
+        "obstacles": False,
+        "walls": False,
+    },
     "arena": {"size": True},
     "start": {"position": True, "heading": False, "size": False},
     "goal": {"position": True, "radius": True},
@@ -90,16 +98,23 @@ class MazeLayout:
             where = f"obstacles[{i}]"
             item = _table(item, where, source)
             _check_keys(item, "obstacles", source, where)
-            obstacles.append(Obstacle(_pair(item["center"], f"{where}.center", source),
-                                      _number(item["radius"], f"{where}.radius", source,
-                                              positive=True)))
+            obstacles.append(
+                Obstacle(
+                    _pair(item["center"], f"{where}.center", source),
+                    _number(item["radius"], f"{where}.radius", source, positive=True),
+                )
+            )
         walls = []
         for i, item in enumerate(_array(data.get("walls", []), "walls", source)):
             where = f"walls[{i}]"
             item = _table(item, where, source)
             _check_keys(item, "walls", source, where)
-            walls.append(Wall(_pair(item["center"], f"{where}.center", source),
-                              _pair(item["size"], f"{where}.size", source, positive=True)))
+            walls.append(
+                Wall(
+                    _pair(item["center"], f"{where}.center", source),
+                    _pair(item["size"], f"{where}.size", source, positive=True),
+                )
+            )
         name = data.get("name", Path(source).stem)
         description = data.get("description", "")
         for key, value in (("name", name), ("description", description)):
@@ -111,12 +126,16 @@ class MazeLayout:
             start=_pair(start_table["position"], "start.position", source),
             goal=_pair(goal_table["position"], "goal.position", source),
             goal_radius=_number(goal_table["radius"], "goal.radius", source, positive=True),
-            robot_radius=_number(data.get("robot_radius", DEFAULT_ROBOT_RADIUS),
-                                 "robot_radius", source, positive=True),
-            start_heading=_number(start_table.get("heading", math.pi / 2), "start.heading",
-                                  source),
-            start_size=_number(start_table.get("size", DEFAULT_START_SIZE), "start.size",
-                               source, positive=True),
+            robot_radius=_number(
+                data.get("robot_radius", DEFAULT_ROBOT_RADIUS),
+                "robot_radius",
+                source,
+                positive=True,
+            ),
+            start_heading=_number(start_table.get("heading", math.pi / 2), "start.heading", source),
+            start_size=_number(
+                start_table.get("size", DEFAULT_START_SIZE), "start.size", source, positive=True
+            ),
             obstacles=tuple(obstacles),
             walls=tuple(walls),
             description=description,
@@ -134,25 +153,34 @@ class MazeLayout:
         src = self.source
         for key, (x, y) in (("start.position", self.start), ("goal.position", self.goal)):
             if not (0.0 < x < self.arena[0] and 0.0 < y < self.arena[1]):
-                raise ValueError(f"{src}: field '{key}' = ({x}, {y}) lies outside the arena "
-                                 f"[0, {self.arena[0]}] x [0, {self.arena[1]}]")
+                raise ValueError(
+                    f"{src}: field '{key}' = ({x}, {y}) lies outside the arena "
+                    f"[0, {self.arena[0]}] x [0, {self.arena[1]}]"
+                )
         for i, obstacle in enumerate(self.obstacles):
             if math.dist(self.goal, obstacle.center) < obstacle.radius:
-                raise ValueError(f"{src}: field 'goal.position' = {self.goal} lies inside "
-                                 f"obstacles[{i}]")
+                raise ValueError(
+                    f"{src}: field 'goal.position' = {self.goal} lies inside obstacles[{i}]"
+                )
         for i, wall in enumerate(self.walls):
-            if (abs(self.goal[0] - wall.center[0]) < wall.size[0] / 2
-                    and abs(self.goal[1] - wall.center[1]) < wall.size[1] / 2):
-                raise ValueError(f"{src}: field 'goal.position' = {self.goal} lies inside "
-                                 f"walls[{i}]")
+            if (
+                abs(self.goal[0] - wall.center[0]) < wall.size[0] / 2
+                and abs(self.goal[1] - wall.center[1]) < wall.size[1] / 2
+            ):
+                raise ValueError(
+                    f"{src}: field 'goal.position' = {self.goal} lies inside walls[{i}]"
+                )
         start_clearance = float(clearance(self, np.array(self.start)))
         if start_clearance < radius:
             raise ValueError(
                 f"{src}: field 'start.position' = {self.start}: a robot of radius {radius} "
-                f"there overlaps a wall or an obstacle (clearance {start_clearance:.2f})")
+                f"there overlaps a wall or an obstacle (clearance {start_clearance:.2f})"
+            )
         if not goal_reachable(self, radius):
-            raise ValueError(f"{src}: field 'goal' at {self.goal} (radius {self.goal_radius}) "
-                             f"cannot be reached from the start by a robot of radius {radius}")
+            raise ValueError(
+                f"{src}: field 'goal' at {self.goal} (radius {self.goal_radius}) "
+                f"cannot be reached from the start by a robot of radius {radius}"
+            )
 
     def contains(self, x: float, y: float) -> bool:
         """Whether (x, y) lies strictly inside the arena."""
@@ -169,15 +197,18 @@ def load_layout(name_or_path: str | Path | MazeLayout) -> MazeLayout:
     if isinstance(name_or_path, MazeLayout):
         return name_or_path
     if not isinstance(name_or_path, str | Path):
-        raise TypeError(f"maze must be a layout name, a path or a MazeLayout, "
-                        f"got {type(name_or_path).__name__}")
+        raise TypeError(
+            f"maze must be a layout name, a path or a MazeLayout, got {type(name_or_path).__name__}"
+        )
     text = str(name_or_path)
     path = Path(text)
     if path.suffix != ".toml" and "/" not in text and "\\" not in text:
         path = MAZE_DIR / f"{text}.toml"
         if not path.is_file():
-            raise ValueError(f"unknown maze {text!r}: choose one of {available_layouts()} "
-                             f"or give a path to a .toml file")
+            raise ValueError(
+                f"unknown maze {text!r}: choose one of {available_layouts()} "
+                f"or give a path to a .toml file"
+            )
     if not path.is_file():
         raise FileNotFoundError(f"maze file not found: {path}")
     try:
@@ -193,8 +224,9 @@ def _check_keys(table: dict[str, Any], kind: str, source: str, where: str | None
     allowed = _SCHEMA[kind]
     for key in table:
         if key not in allowed:
-            raise ValueError(f"{source}: unknown field '{prefix}{key}' "
-                             f"(allowed: {', '.join(allowed)})")
+            raise ValueError(
+                f"{source}: unknown field '{prefix}{key}' (allowed: {', '.join(allowed)})"
+            )
     for key, required in allowed.items():
         if required and key not in table:
             raise ValueError(f"{source}: missing field '{prefix}{key}'")
@@ -223,5 +255,7 @@ def _number(value: Any, where: str, source: str, positive: bool = False) -> floa
 def _pair(value: Any, where: str, source: str, positive: bool = False) -> tuple[float, float]:
     if not isinstance(value, list | tuple) or len(value) != 2:
         raise ValueError(f"{source}: field '{where}' must be a pair [x, y], got {value!r}")
-    return (_number(value[0], f"{where}[0]", source, positive),
-            _number(value[1], f"{where}[1]", source, positive))
+    return (
+        _number(value[0], f"{where}[0]", source, positive),
+        _number(value[1], f"{where}[1]", source, positive),
+    )

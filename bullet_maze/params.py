@@ -45,8 +45,13 @@ class TaskParams:
     """Reward of every other step (section V.A: -0.01)."""
 
     def __post_init__(self) -> None:
-        for name in ("step_size", "noise_variance", "goal_reward", "collision_reward",
-                     "step_reward"):
+        for name in (
+            "step_size",
+            "noise_variance",
+            "goal_reward",
+            "collision_reward",
+            "step_reward",
+        ):
             value = getattr(self, name)
             if not isinstance(value, int | float) or not math.isfinite(value):
                 raise ValueError(f"{name} must be a finite number, got {value!r}")
@@ -91,6 +96,4 @@ class PhysicsParams:
             if not isinstance(value, int) or isinstance(value, bool) or value < 1:
                 raise ValueError(f"{name} must be a positive integer, got {value!r}")
         if not isinstance(self.revert_on_collision, bool):
-            raise TypeError(
-                f"revert_on_collision must be a bool, got {self.revert_on_collision!r}"
-            )
+            raise TypeError(f"revert_on_collision must be a bool, got {self.revert_on_collision!r}")

@@ -79,16 +79,26 @@ def goal_reachable(
     (``_free_regions``), so another start or goal in the same layout costs a lookup.
     """
     regions = _free_regions(_solids(layout), float(robot_radius))
-    return regions.connects(layout.start if start is None else start,
-                            layout.goal if goal is None else goal, layout.goal_radius)
+    return regions.connects(
+        layout.start if start is None else start,
+        layout.goal if goal is None else goal,
+        layout.goal_radius,
+    )
 
 
 def _solids(layout: MazeLayout) -> MazeLayout:
     """The layout with everything but its solids, arena and goal radius set to fixed values, as
     the cache key of what depends only on those."""
-    return dataclasses.replace(layout, name="", description="", start=(0.0, 0.0),
-                               goal=(0.0, 0.0), start_heading=0.0, start_size=1.0,
-                               robot_radius=1.0)
+    return dataclasses.replace(
+        layout,
+        name="",
+        description="",
+        start=(0.0, 0.0),
+        goal=(0.0, 0.0),
+        start_heading=0.0,
+        start_size=1.0,
+        robot_radius=1.0,
+    )
 
 
 class _Regions:
@@ -98,8 +108,9 @@ class _Regions:
         self.grid = grid
         _, self.labels = connected_components(grid.edges(diagonal=False), directed=False)
 
-    def connects(self, start: tuple[float, float], goal: tuple[float, float],
-                 goal_radius: float) -> bool:
+    def connects(
+        self, start: tuple[float, float], goal: tuple[float, float], goal_radius: float
+    ) -> bool:
         """Whether the start's region holds a free cell of the goal circle."""
         node = self.grid.start_node(start)
         if node is None:
@@ -125,8 +136,7 @@ def shortest_path(
 @lru_cache(maxsize=64)
 def _shortest_path(layout: MazeLayout, radius: float, step_size: float) -> PhysicalLimit:
     if radius <= 0 or step_size <= 0:
-        raise ValueError(f"robot_radius and step_size must be positive, got {radius}, "
-                         f"{step_size}")
+        raise ValueError(f"robot_radius and step_size must be positive, got {radius}, {step_size}")
     grid = _Grid(layout, radius, _resolution(layout))
     start = grid.start_node(layout.start)
     goals = grid.goal_nodes(layout.goal, layout.goal_radius)
@@ -150,9 +160,16 @@ def _shortest_path(layout: MazeLayout, radius: float, step_size: float) -> Physi
 
     lattice, actions = _lattice_steps(layout, radius, step_size)
     steps = math.ceil(l1_length / step_size - 1e-9)
-    return PhysicalLimit(length=length, l1_length=l1_length, steps=steps, lattice_steps=lattice,
-                         actions=actions, waypoints=waypoints, robot_radius=radius,
-                         step_size=step_size)
+    return PhysicalLimit(
+        length=length,
+        l1_length=l1_length,
+        steps=steps,
+        lattice_steps=lattice,
+        actions=actions,
+        waypoints=waypoints,
+        robot_radius=radius,
+        step_size=step_size,
+    )
 
 
 def _resolution(layout: MazeLayout) -> float:
@@ -229,7 +246,7 @@ def _pull_taut(layout: MazeLayout, points: np.ndarray, limit: float) -> np.ndarr
         anchor = kept[-1]
         step = len(points) - 1 - anchor
         for first in range(anchor + 1, len(points), chunk):
-            ends = points[first:first + chunk]
+            ends = points[first : first + chunk]
             starts = np.broadcast_to(points[anchor], ends.shape)
             # Sampled every 0.1 unit: a segment may dip at most 0.05 below the limit between.
             visible = segment_clearance(layout, starts, ends, spacing) >= limit
@@ -279,8 +296,7 @@ def _lattice_steps(
         a = (slice(0, nx - di), slice(0, ny - dj))
         b = (slice(di, nx), slice(dj, ny))
         ok = free[a] & free[b]
-        seg_ok = segment_clearance(layout, pts[a][ok], pts[b][ok], spacing) >= (
-            limit + spacing / 2)
+        seg_ok = segment_clearance(layout, pts[a][ok], pts[b][ok], spacing) >= (limit + spacing / 2)
         rows.append(index[a][ok][seg_ok])
         cols.append(index[b][ok][seg_ok])
     r, c = np.concatenate(rows), np.concatenate(cols)
@@ -291,8 +307,9 @@ def _lattice_steps(
     dist = np.full(n, np.inf)
     for node in order:  # breadth-first order: a node's predecessor is already measured
         dist[node] = 0.0 if node == start else dist[pred[node]] + 1.0
-    in_goal = (np.hypot(pts[..., 0] - layout.goal[0], pts[..., 1] - layout.goal[1])
-               <= layout.goal_radius) & free
+    in_goal = (
+        np.hypot(pts[..., 0] - layout.goal[0], pts[..., 1] - layout.goal[1]) <= layout.goal_radius
+    ) & free
     goals = np.flatnonzero(in_goal.ravel())
     if goals.size == 0 or not np.isfinite(dist[goals]).any():
         return None, ()

@@ -33,7 +33,8 @@ class TopDownCamera:
         self.view = pb.computeViewMatrix([cx, cy, distance], [cx, cy, 0.0], [0.0, 1.0, 0.0])
         fov = math.degrees(2.0 * math.atan(half / distance))
         self.projection = pb.computeProjectionMatrixFOV(
-            fov, width / height, distance - 2.0 * WALL_HEIGHT * s, distance + 1.0)
+            fov, width / height, distance - 2.0 * WALL_HEIGHT * s, distance + 1.0
+        )
 
     def pixel(self, x: float, y: float) -> tuple[int, int]:
         """(row, column) of the maze point (x, y) in the image."""
@@ -46,7 +47,12 @@ class TopDownCamera:
     def render(self, client: int) -> np.ndarray:
         """An RGB image, ``uint8`` of shape (height, width, 3)."""
         _, _, rgba, _, _ = pb.getCameraImage(
-            self.width, self.height, self.view, self.projection,
-            renderer=pb.ER_TINY_RENDERER, physicsClientId=client)
+            self.width,
+            self.height,
+            self.view,
+            self.projection,
+            renderer=pb.ER_TINY_RENDERER,
+            physicsClientId=client,
+        )
         image = np.asarray(rgba, dtype=np.uint8).reshape(self.height, self.width, 4)
         return np.ascontiguousarray(image[..., :3])

@@ -107,16 +107,19 @@ def load_urdf(client: int, path: Path, scale: float = 1.0) -> int:
         raise FileNotFoundError(f"robot URDF not found: {path}")
     with _native_output_captured() as output:
         try:
-            body = pb.loadURDF(str(path), [0.0, 0.0, 0.0], globalScaling=scale,
-                               physicsClientId=client)
+            body = pb.loadURDF(
+                str(path), [0.0, 0.0, 0.0], globalScaling=scale, physicsClientId=client
+            )
         except pb.error as err:
             failure: pb.error | None = err
         else:
             failure = None
     if failure is not None:
         detail = " ".join("".join(output).split())[-300:]
-        raise ValueError(f"robot URDF {path} could not be loaded by pybullet: {failure}"
-                         + (f" ({detail})" if detail else "")) from failure
+        raise ValueError(
+            f"robot URDF {path} could not be loaded by pybullet: {failure}"
+            + (f" ({detail})" if detail else "")
+        ) from failure
     return body
 
 
@@ -138,9 +141,12 @@ def husky_urdf_text() -> str:
             continue
         link = links[child.get("link", "")]
         visuals = link.findall("visual")
-        if (joint.get("type") != "fixed" or link.find("inertial") is not None
-                or link.find("collision") is not None
-                or any(_has_offset(visual.find("origin")) for visual in visuals)):
+        if (
+            joint.get("type") != "fixed"
+            or link.find("inertial") is not None
+            or link.find("collision") is not None
+            or any(_has_offset(visual.find("origin")) for visual in visuals)
+        ):
             continue
         origin = joint.find("origin")
         for visual in visuals:
@@ -160,8 +166,7 @@ def _has_offset(origin: ET.Element | None) -> bool:
     """Whether a URDF ``<origin>`` moves or turns its element."""
     if origin is None:
         return False
-    return any(float(v) != 0.0 for key in ("xyz", "rpy")
-               for v in origin.get(key, "0 0 0").split())
+    return any(float(v) != 0.0 for key in ("xyz", "rpy") for v in origin.get(key, "0 0 0").split())
 
 
 def footprint(client: int, body: int) -> tuple[float, float]:
@@ -184,10 +189,10 @@ def footprint(client: int, body: int) -> tuple[float, float]:
     a, z = np.meshgrid(angles, heights)
     starts = np.stack([base[0] + reach * np.cos(a), base[1] + reach * np.sin(a), z], -1)
     ends = np.stack([np.full_like(a, base[0]), np.full_like(a, base[1]), z], -1)
-    hits = pb.rayTestBatch(starts.reshape(-1, 3).tolist(), ends.reshape(-1, 3).tolist(),
-                           physicsClientId=client)
-    radii = [math.hypot(hit[3][0] - base[0], hit[3][1] - base[1])
-             for hit in hits if hit[0] == body]
+    hits = pb.rayTestBatch(
+        starts.reshape(-1, 3).tolist(), ends.reshape(-1, 3).tolist(), physicsClientId=client
+    )
+    radii = [math.hypot(hit[3][0] - base[0], hit[3][1] - base[1]) for hit in hits if hit[0] == body]
     if not radii:
         raise ValueError("robot has no collision geometry to measure its footprint")
     return max(radii), float(low[2])
@@ -234,10 +239,15 @@ class Robot(ABC):
     def place(self, x: float, y: float, heading: float) -> None:
         """Teleport the robot, at rest, to (x, y) facing ``heading``."""
         s = METRES_PER_UNIT
-        pb.resetBasePositionAndOrientation(self.body_id, (x * s, y * s, self._rest_z),
-                                           _quaternion(heading), physicsClientId=self.client)
-        pb.resetBaseVelocity(self.body_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0),
-                             physicsClientId=self.client)
+        pb.resetBasePositionAndOrientation(
+            self.body_id,
+            (x * s, y * s, self._rest_z),
+            _quaternion(heading),
+            physicsClientId=self.client,
+        )
+        pb.resetBaseVelocity(
+            self.body_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), physicsClientId=self.client
+        )
 
     # The calls of the dynamic step name the client positionally: pybullet parses a keyword
     # argument for about 0.25 us, a twentieth of a physics step.
@@ -278,8 +288,7 @@ class Robot(ABC):
         self._physics = physics
 
     @abstractmethod
-    def drive(self, dx: float, dy: float, watch: World | None,
-              stop_on_touch: bool = False) -> bool:
+    def drive(self, dx: float, dy: float, watch: World | None, stop_on_touch: bool = False) -> bool:
         """Dynamic mode: move by (dx, dy) maze units through physics substeps, with the
         settings given to ``configure``.
 
@@ -302,8 +311,9 @@ class HolonomicRobot(Robot):
     has_heading = False
     reach_margin = 0.5  # friction only shortens the commanded move; contacts need proximity
 
-    def __init__(self, client: int, path: Path, radius: float | None = None,
-                 name: str | None = None) -> None:
+    def __init__(
+        self, client: int, path: Path, radius: float | None = None, name: str | None = None
+    ) -> None:
         super().__init__(client)
         self.name = name or path.stem
         self._load_scaled(path, radius)
@@ -312,13 +322,13 @@ class HolonomicRobot(Robot):
 
     def configure(self, physics: PhysicsParams) -> None:
         super().configure(physics)
-        pb.changeDynamics(self.body_id, -1, linearDamping=0.0, angularDamping=0.0,
-                          physicsClientId=self.client)
+        pb.changeDynamics(
+            self.body_id, -1, linearDamping=0.0, angularDamping=0.0, physicsClientId=self.client
+        )
         self._rate = METRES_PER_UNIT / (physics.substeps * physics.time_step)
         self._substeps = range(physics.substeps)
 
-    def drive(self, dx: float, dy: float, watch: World | None,
-              stop_on_touch: bool = False) -> bool:
+    def drive(self, dx: float, dy: float, watch: World | None, stop_on_touch: bool = False) -> bool:
         client, body, rate = self.client, self.body_id, self._rate
         step = pb.stepSimulation
         pb.resetBaseVelocity(body, (dx * rate, dy * rate, 0.0), _STILL, client)
@@ -396,8 +406,10 @@ class HuskyRobot(Robot):
         # A skid-steered turn in place swings the base round a pivot near the rear axle, about
         # half the footprint's radius away: the base may stray the radius from its start.
         self.reach_margin = self.radius
-        names = {pb.getJointInfo(self.body_id, j, physicsClientId=client)[1].decode(): j
-                 for j in range(pb.getNumJoints(self.body_id, physicsClientId=client))}
+        names = {
+            pb.getJointInfo(self.body_id, j, physicsClientId=client)[1].decode(): j
+            for j in range(pb.getNumJoints(self.body_id, physicsClientId=client))
+        }
         self._wheels = [names[wheel] for wheel in self.WHEELS]
         self._wheel_speeds = (math.nan, math.nan)  # the last command sent: (left, right) rad/s
         # husky.urdf gives no inertial data for its frame-only links (footprint, IMU, plates,
@@ -406,9 +418,13 @@ class HuskyRobot(Robot):
         for link in [-1, *names.values()]:
             mass, _, inertia = pb.getDynamicsInfo(self.body_id, link, physicsClientId=client)[:3]
             if mass == 1.0 and len(set(inertia)) == 1:
-                pb.changeDynamics(self.body_id, link, mass=self.DUMMY_MASS,
-                                  localInertiaDiagonal=[self.DUMMY_MASS * 1e-3] * 3,
-                                  physicsClientId=client)
+                pb.changeDynamics(
+                    self.body_id,
+                    link,
+                    mass=self.DUMMY_MASS,
+                    localInertiaDiagonal=[self.DUMMY_MASS * 1e-3] * 3,
+                    physicsClientId=client,
+                )
 
     def configure(self, physics: PhysicsParams) -> None:
         super().configure(physics)
@@ -430,12 +446,15 @@ class HuskyRobot(Robot):
             return
         self._wheel_speeds = (left, right)
         pb.setJointMotorControlArray(
-            self.body_id, self._wheels, pb.VELOCITY_CONTROL,
-            targetVelocities=[left, left, right, right], forces=[self.WHEEL_FORCE] * 4,
-            physicsClientId=self.client)
+            self.body_id,
+            self._wheels,
+            pb.VELOCITY_CONTROL,
+            targetVelocities=[left, left, right, right],
+            forces=[self.WHEEL_FORCE] * 4,
+            physicsClientId=self.client,
+        )
 
-    def drive(self, dx: float, dy: float, watch: World | None,
-              stop_on_touch: bool = False) -> bool:
+    def drive(self, dx: float, dy: float, watch: World | None, stop_on_touch: bool = False) -> bool:
         """Turn in place towards the target point, the start plus (dx, dy), then drive to it.
 
         Both phases aim at the point itself, not along the step's direction: a skid-steered
@@ -455,8 +474,10 @@ class HuskyRobot(Robot):
         aim, tolerance = self.AIM_RADIUS * s, self.DISTANCE_TOLERANCE * s
         substep = 0
         touched = False
-        for turning, limit in ((True, physics.max_turn_substeps),
-                               (False, physics.max_drive_substeps)):
+        for turning, limit in (
+            (True, physics.max_turn_substeps),
+            (False, physics.max_drive_substeps),
+        ):
             end = substep + limit
             while substep < end:
                 (x, y, _), orientation = pb.getBasePositionAndOrientation(body, client)
@@ -474,9 +495,11 @@ class HuskyRobot(Robot):
                     remaining = ex * math.cos(heading) + ey * math.sin(heading)
                     if abs(remaining) < tolerance and math.hypot(vx, vy) < self.SETTLED_SPEED:
                         break
-                    speed = min(self.MAX_SPEED,
-                                math.sqrt(2.0 * self.DRIVE_DECELERATION * abs(remaining)),
-                                self.DRIVE_GAIN * abs(remaining))
+                    speed = min(
+                        self.MAX_SPEED,
+                        math.sqrt(2.0 * self.DRIVE_DECELERATION * abs(remaining)),
+                        self.DRIVE_GAIN * abs(remaining),
+                    )
                     forward = math.copysign(speed, remaining) * max(0.0, math.cos(error))
                     gain = self.STEER_GAIN
                 self._command(forward, min(self.MAX_SPIN, max(-self.MAX_SPIN, gain * error)))
@@ -504,5 +527,6 @@ def make_robot(spec: str | Path, client: int, radius: float | None) -> Robot:
         return HolonomicRobot(client, DISC_URDF, radius, name="disc")
     if spec == "husky":
         return HuskyRobot(client, radius)
-    raise ValueError(f"unknown robot {spec!r}: choose one of {list(ROBOT_NAMES)} or give a path "
-                     f"to a .urdf file")
+    raise ValueError(
+        f"unknown robot {spec!r}: choose one of {list(ROBOT_NAMES)} or give a path to a .urdf file"
+    )

@@ -79,9 +79,12 @@ class World:
         margin = BOUNDARY_THICKNESS
         shape = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=c)
         visual = pb.createVisualShape(
-            pb.GEOM_BOX, halfExtents=[(w / 2 + margin) * s, (h / 2 + margin) * s, 0.005],
-            visualFramePosition=[w / 2 * s, h / 2 * s, -0.005], rgbaColor=COLOURS["ground"],
-            physicsClientId=c)
+            pb.GEOM_BOX,
+            halfExtents=[(w / 2 + margin) * s, (h / 2 + margin) * s, 0.005],
+            visualFramePosition=[w / 2 * s, h / 2 * s, -0.005],
+            rgbaColor=COLOURS["ground"],
+            physicsClientId=c,
+        )
         ground = pb.createMultiBody(0.0, shape, visual, physicsClientId=c)
         pb.changeDynamics(ground, -1, lateralFriction=GROUND_FRICTION, physicsClientId=c)
         return ground
@@ -112,34 +115,53 @@ class World:
             positions.append([obstacle.center[0] * s, obstacle.center[1] * s, z * s])
             colours.append(COLOURS["obstacle"])
         shape = pb.createCollisionShapeArray(
-            shapeTypes=types, halfExtents=extents, radii=radii, lengths=lengths,
-            collisionFramePositions=positions, physicsClientId=c)
+            shapeTypes=types,
+            halfExtents=extents,
+            radii=radii,
+            lengths=lengths,
+            collisionFramePositions=positions,
+            physicsClientId=c,
+        )
         visual = pb.createVisualShapeArray(
-            shapeTypes=types, halfExtents=extents, radii=radii, lengths=lengths,
-            rgbaColors=colours, visualFramePositions=positions, physicsClientId=c)
+            shapeTypes=types,
+            halfExtents=extents,
+            radii=radii,
+            lengths=lengths,
+            rgbaColors=colours,
+            visualFramePositions=positions,
+            physicsClientId=c,
+        )
         return pb.createMultiBody(0.0, shape, visual, physicsClientId=c)
 
     def _build_markers(self) -> None:
         s, c, layout = METRES_PER_UNIT, self.client, self.layout
         half = layout.start_size / 2 * s
-        square = pb.createVisualShape(pb.GEOM_BOX, halfExtents=[half, half, 0.002],
-                                      rgbaColor=COLOURS["start"], physicsClientId=c)
+        square = pb.createVisualShape(
+            pb.GEOM_BOX,
+            halfExtents=[half, half, 0.002],
+            rgbaColor=COLOURS["start"],
+            physicsClientId=c,
+        )
         self.start_marker_id = pb.createMultiBody(
-            0.0, -1, square, [layout.start[0] * s, layout.start[1] * s, 0.002],
-            physicsClientId=c)
-        circle = pb.createVisualShape(pb.GEOM_CYLINDER, radius=layout.goal_radius * s,
-                                      length=0.004, rgbaColor=COLOURS["goal"],
-                                      physicsClientId=c)
+            0.0, -1, square, [layout.start[0] * s, layout.start[1] * s, 0.002], physicsClientId=c
+        )
+        circle = pb.createVisualShape(
+            pb.GEOM_CYLINDER,
+            radius=layout.goal_radius * s,
+            length=0.004,
+            rgbaColor=COLOURS["goal"],
+            physicsClientId=c,
+        )
         self.goal_marker_id = pb.createMultiBody(
-            0.0, -1, circle, [layout.goal[0] * s, layout.goal[1] * s, 0.002],
-            physicsClientId=c)
+            0.0, -1, circle, [layout.goal[0] * s, layout.goal[1] * s, 0.002], physicsClientId=c
+        )
 
     def _build_probe(self, radius: float) -> int:
         s, c = METRES_PER_UNIT, self.client
-        shape = pb.createCollisionShape(pb.GEOM_CYLINDER, radius=radius * s,
-                                        height=WALL_HEIGHT / 2 * s, physicsClientId=c)
-        probe = pb.createMultiBody(0.0, shape, -1, [0.0, 0.0, -WALL_HEIGHT * s],
-                                   physicsClientId=c)
+        shape = pb.createCollisionShape(
+            pb.GEOM_CYLINDER, radius=radius * s, height=WALL_HEIGHT / 2 * s, physicsClientId=c
+        )
+        probe = pb.createMultiBody(0.0, shape, -1, [0.0, 0.0, -WALL_HEIGHT * s], physicsClientId=c)
         # The probe only answers distance queries; it never touches anything in the simulation.
         pb.setCollisionFilterGroupMask(probe, -1, 0, 0, physicsClientId=c)
         return probe
@@ -148,8 +170,9 @@ class World:
         """Show the start square and the goal circle at these centres (maze units)."""
         s = METRES_PER_UNIT
         for marker, (x, y) in ((self.start_marker_id, start), (self.goal_marker_id, goal)):
-            pb.resetBasePositionAndOrientation(marker, [x * s, y * s, 0.002], _IDENTITY,
-                                               physicsClientId=self.client)
+            pb.resetBasePositionAndOrientation(
+                marker, [x * s, y * s, 0.002], _IDENTITY, physicsClientId=self.client
+            )
 
     def restore(self, state_id: int) -> None:
         """``pybullet.restoreState``: bodies, the probe included, go back to a saved state."""
@@ -160,16 +183,21 @@ class World:
         """Move the probe under the floor, out of sight of cameras (pybullet draws the collision
         shape of a body that has no visual shape)."""
         below = (0.0, 0.0, -WALL_HEIGHT * METRES_PER_UNIT)
-        pb.resetBasePositionAndOrientation(self.probe_id, below, _IDENTITY,
-                                           physicsClientId=self.client)
+        pb.resetBasePositionAndOrientation(
+            self.probe_id, below, _IDENTITY, physicsClientId=self.client
+        )
         self._probe_xy = (math.nan, math.nan)
 
     def place_probe(self, x: float, y: float) -> None:
         """Put the probe's centre at (x, y) in maze units."""
         if (x, y) != self._probe_xy:
             s = METRES_PER_UNIT
-            pb.resetBasePositionAndOrientation(self.probe_id, (x * s, y * s, WALL_HEIGHT / 4 * s),
-                                               _IDENTITY, physicsClientId=self.client)
+            pb.resetBasePositionAndOrientation(
+                self.probe_id,
+                (x * s, y * s, WALL_HEIGHT / 4 * s),
+                _IDENTITY,
+                physicsClientId=self.client,
+            )
             self._probe_xy = (x, y)
 
     def distance(self, x: float, y: float, reach: float) -> float:
@@ -266,8 +294,7 @@ class World:
             travelled += advance
             if travelled >= length:
                 return False
-            points = self._closest(x0 + travelled * ux, y0 + travelled * uy,
-                                   length - travelled)
+            points = self._closest(x0 + travelled * ux, y0 + travelled * uy, length - travelled)
         return True
 
     def _cell_bounds(self, cell: tuple[int, int]) -> _CellBounds | None:
@@ -286,15 +313,20 @@ class World:
         """pybullet's closest points between the footprint at (x, y) and every solid piece
         within ``reach`` (plus the tolerance)."""
         self.place_probe(x, y)
-        return pb.getClosestPoints(self.probe_id, self.solid_id,
-                                   (reach + CONTACT_TOLERANCE) * METRES_PER_UNIT,
-                                   physicsClientId=self.client)
+        return pb.getClosestPoints(
+            self.probe_id,
+            self.solid_id,
+            (reach + CONTACT_TOLERANCE) * METRES_PER_UNIT,
+            physicsClientId=self.client,
+        )
 
     def touching(self, body_id: int) -> bool:
         """Whether a simulated body is in contact with a wall or an obstacle."""
         limit = CONTACT_TOLERANCE * METRES_PER_UNIT
-        return any(point[8] < limit for point in pb.getContactPoints(
-            body_id, self.solid_id, physicsClientId=self.client))
+        return any(
+            point[8] < limit
+            for point in pb.getContactPoints(body_id, self.solid_id, physicsClientId=self.client)
+        )
 
     def touching_now(self, body_id: int) -> bool:
         """``touching`` after a fresh collision detection of the current poses."""
@@ -307,8 +339,9 @@ class _CellBounds:
 
     __slots__ = ("cx", "cy", "free", "pieces")
 
-    def __init__(self, cx: float, cy: float,
-                 pieces: tuple[tuple[float, float, float], ...]) -> None:
+    def __init__(
+        self, cx: float, cy: float, pieces: tuple[tuple[float, float, float], ...]
+    ) -> None:
         self.cx, self.cy = cx, cy
         self.pieces = pieces  # (distance at the centre, normal x, normal y) per convex piece
         # Radius of the disc around the centre where a footprint is free: pieces the query did
@@ -322,8 +355,10 @@ class _CellBounds:
         if math.hypot(ax, ay) > CELL_REACH or math.hypot(bx, by) > CELL_REACH:
             return False
         for distance, nx, ny in self.pieces:
-            if (distance + nx * ax + ny * ay < CONTACT_TOLERANCE
-                    or distance + nx * bx + ny * by < CONTACT_TOLERANCE):
+            if (
+                distance + nx * ax + ny * ay < CONTACT_TOLERANCE
+                or distance + nx * bx + ny * by < CONTACT_TOLERANCE
+            ):
                 return False
         return True
 

@@ -24,8 +24,16 @@ def frame_indices(steps: int, max_frames: int) -> np.ndarray:
     return np.unique(np.linspace(0, steps, count).round().astype(int))
 
 
-def render_gif(agent: Any, layout: Any, directions: np.ndarray, positions: np.ndarray,
-               path: Path, fps: int = 15, max_frames: int = 150, title: str = "") -> Path:
+def render_gif(
+    agent: Any,
+    layout: Any,
+    directions: np.ndarray,
+    positions: np.ndarray,
+    path: Path,
+    fps: int = 15,
+    max_frames: int = 150,
+    title: str = "",
+) -> Path:
     """Write a GIF of the robot following ``positions`` over the agent's partition."""
     figure = Figure(figsize=(5, 5), dpi=80, layout="constrained")
     canvas = FigureCanvasAgg(figure)
@@ -33,9 +41,10 @@ def render_gif(agent: Any, layout: Any, directions: np.ndarray, positions: np.nd
     draw_partition(axes, agent.leaves(), directions, colorbar=False)
     draw_layout(axes, layout)
     radius = getattr(layout, "robot_radius", 5.0)
-    track, = axes.plot([], [], color="tab:orange", linewidth=1.5, zorder=6)
-    robot = axes.add_patch(Circle(tuple(positions[0]), radius, facecolor="tab:blue",
-                                  edgecolor="k", zorder=7))
+    (track,) = axes.plot([], [], color="tab:orange", linewidth=1.5, zorder=6)
+    robot = axes.add_patch(
+        Circle(tuple(positions[0]), radius, facecolor="tab:blue", edgecolor="k", zorder=7)
+    )
     label = axes.set_title(title)
     frames = []
     steps = len(positions) - 1

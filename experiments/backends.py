@@ -51,8 +51,15 @@ class SerialBackend:
             yield fn(task)
 
 
-ONE_THREAD = {name: "1" for name in (
-    "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS")}
+ONE_THREAD = {
+    name: "1"
+    for name in (
+        "OMP_NUM_THREADS",
+        "OPENBLAS_NUM_THREADS",
+        "MKL_NUM_THREADS",
+        "NUMEXPR_NUM_THREADS",
+    )
+}
 """Each worker is one run on one core: no BLAS or OpenMP thread pools (as Ray's workers)."""
 
 
@@ -114,8 +121,7 @@ class RayBackend:
         try:
             import ray
         except ImportError as error:
-            raise RuntimeError(
-                "the Ray backend needs ray: pip install -e '.[ray]'") from error
+            raise RuntimeError("the Ray backend needs ray: pip install -e '.[ray]'") from error
         self._ray = ray
         self.address = address
         self.workers = workers or default_workers()
@@ -128,8 +134,13 @@ class RayBackend:
         if self.address is None:
             # "local" starts a new instance even when a cluster started by `ray start` runs
             # here (a bare ray.init() would join it).
-            ray.init(address="local", num_cpus=self.workers, include_dashboard=False,
-                     log_to_driver=False, configure_logging=False)
+            ray.init(
+                address="local",
+                num_cpus=self.workers,
+                include_dashboard=False,
+                log_to_driver=False,
+                configure_logging=False,
+            )
         else:
             ray.init(address=self.address, log_to_driver=False, configure_logging=False)
         return True

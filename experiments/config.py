@@ -152,8 +152,12 @@ def parse_config(data: Mapping[str, Any], source: str = "<config>") -> Experimen
     reader = _Reader(source)
     reader.only(data, "", {"experiment", "env", "agent", "strategy"})
     meta = reader.table(data, "experiment", required=True)
-    reader.only(meta, "experiment", {f.name for f in dataclasses.fields(ExperimentConfig)}
-                - {"strategies", "env", "agent", "source"})
+    reader.only(
+        meta,
+        "experiment",
+        {f.name for f in dataclasses.fields(ExperimentConfig)}
+        - {"strategies", "env", "agent", "source"},
+    )
     env_table = reader.table(data, "env")
     reader.only(env_table, "env", {f.name for f in dataclasses.fields(EnvSpec)})
     env = EnvSpec(
@@ -161,8 +165,9 @@ def parse_config(data: Mapping[str, Any], source: str = "<config>") -> Experimen
         maze=reader.value(env_table, "env", "maze", str, EnvSpec.maze),
         robot=reader.value(env_table, "env", "robot", str, EnvSpec.robot),
         mode=reader.choice(env_table, "env", "mode", MODES, EnvSpec.mode),
-        max_episode_steps=reader.positive(env_table, "env", "max_episode_steps",
-                                          EnvSpec.max_episode_steps),
+        max_episode_steps=reader.positive(
+            env_table, "env", "max_episode_steps", EnvSpec.max_episode_steps
+        ),
         params=dict(reader.table(env_table, "env.params")),
     )
     agent = dict(reader.table(data, "agent"))
@@ -176,12 +181,15 @@ def parse_config(data: Mapping[str, Any], source: str = "<config>") -> Experimen
             raise ConfigError(f"{source}: [[strategy]] name: {name!r} is used twice")
     baseline = reader.value(meta, "experiment", "baseline", str, None)
     if baseline is not None and baseline not in names:
-        raise ConfigError(f"{source}: [experiment] baseline: {baseline!r} is not a strategy "
-                          f"(known: {', '.join(names)})")
+        raise ConfigError(
+            f"{source}: [experiment] baseline: {baseline!r} is not a strategy "
+            f"(known: {', '.join(names)})"
+        )
     tolerance = reader.value(meta, "experiment", "convergence_tolerance", (int, float), 0.1)
     if not 0 < tolerance < 1:
-        raise ConfigError(f"{source}: [experiment] convergence_tolerance: must be in (0, 1), "
-                          f"got {tolerance}")
+        raise ConfigError(
+            f"{source}: [experiment] convergence_tolerance: must be in (0, 1), got {tolerance}"
+        )
     budget = reader.value(meta, "experiment", "time_budget_s", (int, float), None)
     if budget is not None and budget <= 0:
         raise ConfigError(f"{source}: [experiment] time_budget_s: must be > 0, got {budget}")
@@ -213,8 +221,9 @@ def with_overrides(config: ExperimentConfig, **overrides: int | None) -> Experim
     for key, value in {**changes, **env_changes}.items():
         minimum = 0 if key == "seed" else 1
         if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-            raise ConfigError(f"option --{key.replace('_', '-')}: expected an integer "
-                              f">= {minimum}, got {value!r}")
+            raise ConfigError(
+                f"option --{key.replace('_', '-')}: expected an integer >= {minimum}, got {value!r}"
+            )
     unknown = set(changes) - {"runs", "episodes", "seed"}
     if unknown:
         raise ConfigError(f"unknown override(s): {', '.join(sorted(unknown))}")
@@ -225,9 +234,13 @@ def with_overrides(config: ExperimentConfig, **overrides: int | None) -> Experim
 def to_dict(config: ExperimentConfig) -> dict[str, Any]:
     """The experiment as TOML-ready data (the inverse of :func:`parse_config`)."""
     meta: dict[str, Any] = {
-        "name": config.name, "description": config.description, "seed": config.seed,
-        "runs": config.runs, "episodes": config.episodes,
-        "smoothing_window": config.smoothing_window, "final_window": config.final_window,
+        "name": config.name,
+        "description": config.description,
+        "seed": config.seed,
+        "runs": config.runs,
+        "episodes": config.episodes,
+        "smoothing_window": config.smoothing_window,
+        "final_window": config.final_window,
         "convergence_tolerance": config.convergence_tolerance,
     }
     if config.baseline is not None:
@@ -237,15 +250,19 @@ def to_dict(config: ExperimentConfig) -> dict[str, Any]:
     env = dataclasses.asdict(config.env)
     strategies = []
     for spec in config.strategies:
-        table: dict[str, Any] = {"name": spec.name, "agent": spec.agent,
-                                 "exploration": spec.exploration}
+        table: dict[str, Any] = {
+            "name": spec.name,
+            "agent": spec.agent,
+            "exploration": spec.exploration,
+        }
         if spec.exploration_params:
             table["exploration_params"] = dict(spec.exploration_params)
         if spec.config:
             table["config"] = dict(spec.config)
         if spec.resolution is not None:
-            table["resolution"] = (spec.resolution if isinstance(spec.resolution, int)
-                                   else list(spec.resolution))
+            table["resolution"] = (
+                spec.resolution if isinstance(spec.resolution, int) else list(spec.resolution)
+            )
         strategies.append(table)
     return {"experiment": meta, "env": env, "agent": dict(config.agent), "strategy": strategies}
 
@@ -271,8 +288,9 @@ def same_experiment(a: ExperimentConfig, b: ExperimentConfig) -> list[str]:
         if lv == rv:
             continue
         if isinstance(lv, dict) and isinstance(rv, dict):
-            differences += [f"{section}.{k}" for k in sorted(set(lv) | set(rv))
-                            if lv.get(k) != rv.get(k)]
+            differences += [
+                f"{section}.{k}" for k in sorted(set(lv) | set(rv)) if lv.get(k) != rv.get(k)
+            ]
         else:
             differences.append(section)
     return differences
@@ -293,8 +311,9 @@ class _Reader:
             if key not in allowed:
                 raise self.fail(where, key, f"unknown key (allowed: {', '.join(sorted(allowed))})")
 
-    def table(self, parent: Mapping[str, Any], key: str, required: bool = False
-              ) -> Mapping[str, Any]:
+    def table(
+        self, parent: Mapping[str, Any], key: str, required: bool = False
+    ) -> Mapping[str, Any]:
         name = key.rsplit(".", 1)[-1]
         if name not in parent:
             if required:
@@ -305,8 +324,14 @@ class _Reader:
             raise ConfigError(f"{self.source}: {key}: expected a table, got {value!r}")
         return value
 
-    def value(self, table: Mapping[str, Any], where: str, key: str,
-              kind: type | tuple[type, ...], default: Any) -> Any:
+    def value(
+        self,
+        table: Mapping[str, Any],
+        where: str,
+        key: str,
+        kind: type | tuple[type, ...],
+        default: Any,
+    ) -> Any:
         if key not in table:
             return default
         value = table[key]
@@ -329,8 +354,9 @@ class _Reader:
             raise self.fail(where, key, f"must be >= 0, got {value}")
         return value
 
-    def choice(self, table: Mapping[str, Any], where: str, key: str,
-               choices: tuple[str, ...], default: str) -> str:
+    def choice(
+        self, table: Mapping[str, Any], where: str, key: str, choices: tuple[str, ...], default: str
+    ) -> str:
         value = self.value(table, where, key, str, default)
         if value not in choices:
             raise self.fail(where, key, f"expected one of {', '.join(choices)}, got {value!r}")
@@ -341,8 +367,9 @@ class _Reader:
             raise self.fail(where, key, "is required")
         value = self.value(table, where, key, str, None)
         if not _NAME.match(value):
-            raise self.fail(where, key, f"{value!r} must be letters, digits and _ . + - only "
-                                        "(it names files)")
+            raise self.fail(
+                where, key, f"{value!r} must be letters, digits and _ . + - only (it names files)"
+            )
         return value
 
     def strategy(self, raw: Any, index: int) -> StrategySpec:
@@ -355,14 +382,21 @@ class _Reader:
         if agent == "grid":
             if resolution is None:
                 raise self.fail(where, "resolution", 'is required when agent = "grid"')
-            ok = (isinstance(resolution, int) and not isinstance(resolution, bool)
-                  and resolution > 0) or (
-                isinstance(resolution, list) and resolution
-                and all(isinstance(r, int) and not isinstance(r, bool) and r > 0
-                        for r in resolution))
+            ok = (
+                isinstance(resolution, int) and not isinstance(resolution, bool) and resolution > 0
+            ) or (
+                isinstance(resolution, list)
+                and resolution
+                and all(
+                    isinstance(r, int) and not isinstance(r, bool) and r > 0 for r in resolution
+                )
+            )
             if not ok:
-                raise self.fail(where, "resolution", "expected a positive integer or a list "
-                                                     f"of them, got {resolution!r}")
+                raise self.fail(
+                    where,
+                    "resolution",
+                    f"expected a positive integer or a list of them, got {resolution!r}",
+                )
             if isinstance(resolution, list):
                 resolution = tuple(resolution)
         elif resolution is not None:
@@ -380,6 +414,12 @@ class _Reader:
 
 
 def _kind_name(kinds: tuple[type, ...]) -> str:
-    names = {int: "an integer", float: "a number", str: "a string", dict: "a table",
-             bool: "true or false", list: "a list"}
+    names = {
+        int: "an integer",
+        float: "a number",
+        str: "a string",
+        dict: "a table",
+        bool: "true or false",
+        list: "a list",
+    }
     return " or ".join(names.get(k, k.__name__) for k in kinds)

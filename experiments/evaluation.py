@@ -43,8 +43,9 @@ class Evaluation:
         return np.array([e.steps for e in self.episodes if e.success])
 
 
-def greedy_episode(env: Any, agent: Any, seed: int | None = None,
-                   collision_key: str = "collision") -> Episode:
+def greedy_episode(
+    env: Any, agent: Any, seed: int | None = None, collision_key: str = "collision"
+) -> Episode:
     """Run ``agent.predict(obs, deterministic=True)`` until the episode ends."""
     obs, _ = env.reset(seed=seed)
     positions = [np.asarray(obs, dtype=float)[:2].copy()]
@@ -64,5 +65,6 @@ def greedy_episode(env: Any, agent: Any, seed: int | None = None,
 
 def evaluate(env: Any, agent: Any, episodes: int, seed: int = 0) -> Evaluation:
     """``episodes`` greedy episodes; the first reset is seeded, so the whole set repeats."""
-    return Evaluation(tuple(greedy_episode(env, agent, seed if i == 0 else None)
-                            for i in range(episodes)))
+    return Evaluation(
+        tuple(greedy_episode(env, agent, seed if i == 0 else None) for i in range(episodes))
+    )

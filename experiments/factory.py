@@ -25,8 +25,15 @@ def make_env(spec: EnvSpec, render_mode: str | None = None, **changes: Any) -> g
     import bullet_maze  # noqa: F401  (registers the environment ids)
 
     spec = dataclasses.replace(spec, **changes) if changes else spec
-    return gym.make(spec.id, max_episode_steps=spec.max_episode_steps, maze=spec.maze,
-                    robot=spec.robot, mode=spec.mode, render_mode=render_mode, **spec.params)
+    return gym.make(
+        spec.id,
+        max_episode_steps=spec.max_episode_steps,
+        maze=spec.maze,
+        robot=spec.robot,
+        mode=spec.mode,
+        render_mode=render_mode,
+        **spec.params,
+    )
 
 
 def agent_config(config: ExperimentConfig, strategy: StrategySpec) -> Any:
@@ -38,8 +45,9 @@ def agent_config(config: ExperimentConfig, strategy: StrategySpec) -> Any:
     try:
         return TreeConfig(**params)
     except (TypeError, ValueError) as error:
-        raise ConfigError(f"{config.source}: [strategy {strategy.name!r}] agent config: "
-                          f"{error}") from None
+        raise ConfigError(
+            f"{config.source}: [strategy {strategy.name!r}] agent config: {error}"
+        ) from None
 
 
 def make_exploration(config: ExperimentConfig, strategy: StrategySpec) -> Any:
@@ -49,12 +57,13 @@ def make_exploration(config: ExperimentConfig, strategy: StrategySpec) -> Any:
     try:
         return build(strategy.exploration, **strategy.exploration_params)
     except (TypeError, ValueError) as error:
-        raise ConfigError(f"{config.source}: [strategy {strategy.name!r}] exploration / "
-                          f"exploration_params: {error}") from None
+        raise ConfigError(
+            f"{config.source}: [strategy {strategy.name!r}] exploration / "
+            f"exploration_params: {error}"
+        ) from None
 
 
-def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env,
-               seed: int) -> Any:
+def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env, seed: int) -> Any:
     """A fresh agent of the strategy for ``env``, its generator seeded with ``seed``."""
     from agent import GridAgent, TreeAgent
 
@@ -62,10 +71,21 @@ def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env,
     exploration = make_exploration(config, strategy)
     try:
         if strategy.agent == "grid":
-            return GridAgent(env.observation_space, env.action_space, exploration=exploration,
-                             seed=seed, config=tree_config, resolution=strategy.resolution)
-        return TreeAgent(env.observation_space, env.action_space, exploration=exploration,
-                         seed=seed, config=tree_config)
+            return GridAgent(
+                env.observation_space,
+                env.action_space,
+                exploration=exploration,
+                seed=seed,
+                config=tree_config,
+                resolution=strategy.resolution,
+            )
+        return TreeAgent(
+            env.observation_space,
+            env.action_space,
+            exploration=exploration,
+            seed=seed,
+            config=tree_config,
+        )
     except (TypeError, ValueError) as error:
         raise ConfigError(f"{config.source}: [strategy {strategy.name!r}]: {error}") from None
 
@@ -105,15 +125,17 @@ def optimal_steps(env: gym.Env) -> float:
     return float("nan") if value is None else float(value)
 
 
-def _check_fields(config_class: type, params: Mapping[str, Any], source: str,
-                  strategy: StrategySpec) -> None:
+def _check_fields(
+    config_class: type, params: Mapping[str, Any], source: str, strategy: StrategySpec
+) -> None:
     known = {f.name for f in dataclasses.fields(config_class)}
     for key in params:
         if key not in known:
             where = "config" if key in strategy.config else "[agent]"
             raise ConfigError(
                 f"{source}: {where} key {key!r} (strategy {strategy.name!r}) is not a field of "
-                f"{config_class.__name__}; known fields: {', '.join(sorted(known))}")
+                f"{config_class.__name__}; known fields: {', '.join(sorted(known))}"
+            )
 
 
 class ProjectObservation(gym.ObservationWrapper):
@@ -129,8 +151,9 @@ class ProjectObservation(gym.ObservationWrapper):
         if not isinstance(space, gym.spaces.Box) or space.shape[0] < dims:
             raise ValueError(f"cannot project observation space {space} to {dims} dimensions")
         self.dims = dims
-        self.observation_space = gym.spaces.Box(space.low[:dims], space.high[:dims],
-                                                dtype=space.dtype)
+        self.observation_space = gym.spaces.Box(
+            space.low[:dims], space.high[:dims], dtype=space.dtype
+        )
 
     def observation(self, observation: np.ndarray) -> np.ndarray:
         """The first ``dims`` entries."""

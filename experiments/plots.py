@@ -31,16 +31,28 @@ def save(figure: Figure, path: Path, dpi: int = 120) -> Path:
     return path
 
 
-def learning_curve(steps: np.ndarray, leaves: np.ndarray, optimal: float, path: Path,
-                   window: int = 50, title: str = "", cap: int | None = None) -> Path:
+def learning_curve(
+    steps: np.ndarray,
+    leaves: np.ndarray,
+    optimal: float,
+    path: Path,
+    window: int = 50,
+    title: str = "",
+    cap: int | None = None,
+) -> Path:
     """One run: steps per episode (raw and moving average, log axis) and leaves per episode."""
     steps = np.asarray(steps, dtype=float)
     episodes = np.arange(1, steps.size + 1)
     figure = Figure(figsize=(8, 6), layout="constrained")
     top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=(3, 1))
     top.plot(episodes, steps, color="0.75", linewidth=0.6, label="steps per episode")
-    top.plot(episodes, moving_average(steps, window), color="C0", linewidth=1.6,
-             label=f"{window}-episode moving average")
+    top.plot(
+        episodes,
+        moving_average(steps, window),
+        color="C0",
+        linewidth=1.6,
+        label=f"{window}-episode moving average",
+    )
     _reference_lines(top, optimal, cap)
     top.set_yscale("log")
     top.set_ylabel("steps to goal")
@@ -52,8 +64,9 @@ def learning_curve(steps: np.ndarray, leaves: np.ndarray, optimal: float, path: 
     return save(figure, path)
 
 
-def smoothed_bands(steps_by_strategy: Mapping[str, np.ndarray], window: int,
-                   seed: int = 0) -> dict[str, Band]:
+def smoothed_bands(
+    steps_by_strategy: Mapping[str, np.ndarray], window: int, seed: int = 0
+) -> dict[str, Band]:
     """Per strategy: each run smoothed by a trailing moving average, then mean and 95% band."""
     return {
         name: bootstrap_mean_band(moving_average(np.atleast_2d(steps), window), seed=seed)
@@ -61,16 +74,29 @@ def smoothed_bands(steps_by_strategy: Mapping[str, np.ndarray], window: int,
     }
 
 
-def figure4(bands: Mapping[str, Band], optimal: float, path: Path, window: int,
-            runs: Mapping[str, int], cap: int | None = None, title: str = "") -> Path:
+def figure4(
+    bands: Mapping[str, Band],
+    optimal: float,
+    path: Path,
+    window: int,
+    runs: Mapping[str, int],
+    cap: int | None = None,
+    title: str = "",
+) -> Path:
     """The Figure 4 analog: average steps to the goal per episode, one curve per strategy."""
     figure = Figure(figsize=(9, 5.5), layout="constrained")
     axes = figure.subplots()
     for index, (name, (mean, low, high)) in enumerate(bands.items()):
         episodes = np.arange(1, mean.size + 1)
         color = f"C{index % 10}"
-        axes.plot(episodes, mean, color=color, linewidth=1.4, linestyle=_STYLES[index // 10 % 3],
-                  label=f"{name} (n={runs.get(name, 0)})")
+        axes.plot(
+            episodes,
+            mean,
+            color=color,
+            linewidth=1.4,
+            linestyle=_STYLES[index // 10 % 3],
+            label=f"{name} (n={runs.get(name, 0)})",
+        )
         axes.fill_between(episodes, low, high, color=color, alpha=0.2, linewidth=0)
     _reference_lines(axes, optimal, cap)
     axes.set_yscale("log")
@@ -99,7 +125,8 @@ def leaves_figure(leaves_by_strategy: Mapping[str, np.ndarray], path: Path) -> P
 
 def _reference_lines(axes: Axes, optimal: float, cap: int | None) -> None:
     if np.isfinite(optimal):
-        axes.axhline(optimal, color="k", linestyle="--", linewidth=1.0,
-                     label=f"optimal ({optimal:g} steps)")
+        axes.axhline(
+            optimal, color="k", linestyle="--", linewidth=1.0, label=f"optimal ({optimal:g} steps)"
+        )
     if cap is not None:
         axes.axhline(cap, color="0.4", linestyle=":", linewidth=1.0, label=f"cap ({cap})")

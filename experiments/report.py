@@ -49,28 +49,44 @@ def write_report(config: ExperimentConfig, out_dir: Path, seed: int = 0) -> Repo
     optimal = _optimal_steps(results)
     window, final_window = config.smoothing_window, config.final_window
     baseline_runs = results.get(config.baseline_name)
-    baseline_final = (None if baseline_runs is None else
-                      _stack(baseline_runs, "steps")[:, -final_window:].mean(axis=1))
+    baseline_final = (
+        None
+        if baseline_runs is None
+        else _stack(baseline_runs, "steps")[:, -final_window:].mean(axis=1)
+    )
     summaries = tuple(
         summarize(
-            name, _stack(runs, "steps"), _stack(runs, "success"), _stack(runs, "leaves"),
-            baseline_final, window=window, final_window=final_window,
+            name,
+            _stack(runs, "steps"),
+            _stack(runs, "success"),
+            _stack(runs, "leaves"),
+            baseline_final,
+            window=window,
+            final_window=final_window,
             tolerance=config.convergence_tolerance,
             wall_time_s=np.array([r.meta.get("wall_time_s", np.nan) for r in runs]),
             steps_per_second=np.array([r.meta.get("steps_per_second", np.nan) for r in runs]),
         )
         for name, runs in results.items()
     )
-    bands = plots.smoothed_bands({n: _stack(r, "steps") for n, r in results.items()}, window,
-                                 seed=seed)
+    bands = plots.smoothed_bands(
+        {n: _stack(r, "steps") for n, r in results.items()}, window, seed=seed
+    )
     runs_count = {name: len(runs) for name, runs in results.items()}
     figures = (
-        plots.figure4(bands, optimal, out_dir / FIGURE4_FILE, window, runs_count,
-                      cap=config.env.max_episode_steps,
-                      title=f"{config.name}: average steps to goal "
-                            f"({window}-episode moving average, 95% bootstrap band)"),
-        plots.leaves_figure({n: _stack(r, "leaves") for n, r in results.items()},
-                            out_dir / LEAVES_FILE),
+        plots.figure4(
+            bands,
+            optimal,
+            out_dir / FIGURE4_FILE,
+            window,
+            runs_count,
+            cap=config.env.max_episode_steps,
+            title=f"{config.name}: average steps to goal "
+            f"({window}-episode moving average, 95% bootstrap band)",
+        ),
+        plots.leaves_figure(
+            {n: _stack(r, "leaves") for n, r in results.items()}, out_dir / LEAVES_FILE
+        ),
     )
     summary_csv = out_dir / SUMMARY_FILE
     store.atomic_write_text(summary_csv, _summary_csv(summaries, optimal))
@@ -95,27 +111,51 @@ def _optimal_steps(results: dict[str, list[store.RunData]]) -> float:
 
 
 def _summary_csv(summaries: tuple[StrategySummary, ...], optimal: float) -> str:
-    columns = ("strategy", "runs", "converged_runs", "median_convergence_episode",
-               "curve_convergence_episode", "final_steps_mean", "final_steps_iqm",
-               "final_to_optimal", "auc_mean_steps", "success_rate", "final_success_rate",
-               "leaves_mean", "p_improvement", "wall_time_s_mean", "steps_per_second_mean")
+    columns = (
+        "strategy",
+        "runs",
+        "converged_runs",
+        "median_convergence_episode",
+        "curve_convergence_episode",
+        "final_steps_mean",
+        "final_steps_iqm",
+        "final_to_optimal",
+        "auc_mean_steps",
+        "success_rate",
+        "final_success_rate",
+        "leaves_mean",
+        "p_improvement",
+        "wall_time_s_mean",
+        "steps_per_second_mean",
+    )
     rows = []
     for s in summaries:
         final = float(np.mean(s.final_steps))
-        rows.append((
-            s.strategy, s.runs, s.converged_runs,
-            "" if s.median_convergence is None else s.median_convergence,
-            "" if s.curve_convergence is None else s.curve_convergence,
-            final, interquartile_mean(s.final_steps), final / optimal if optimal else math.nan,
-            float(np.mean(s.auc)), float(np.mean(s.success_rate)),
-            float(np.mean(s.final_success_rate)), float(np.mean(s.leaves)), s.p_improvement,
-            _nanmean(s.wall_time_s), _nanmean(s.steps_per_second),
-        ))
+        rows.append(
+            (
+                s.strategy,
+                s.runs,
+                s.converged_runs,
+                "" if s.median_convergence is None else s.median_convergence,
+                "" if s.curve_convergence is None else s.curve_convergence,
+                final,
+                interquartile_mean(s.final_steps),
+                final / optimal if optimal else math.nan,
+                float(np.mean(s.auc)),
+                float(np.mean(s.success_rate)),
+                float(np.mean(s.final_success_rate)),
+                float(np.mean(s.leaves)),
+                s.p_improvement,
+                _nanmean(s.wall_time_s),
+                _nanmean(s.steps_per_second),
+            )
+        )
     return store.format_rows(rows, columns)
 
 
-def render_markdown(config: ExperimentConfig, summaries: tuple[StrategySummary, ...],
-                    optimal: float, seed: int = 0) -> str:
+def render_markdown(
+    config: ExperimentConfig, summaries: tuple[StrategySummary, ...], optimal: float, seed: int = 0
+) -> str:
     """The report's Markdown text."""
     cap = config.env.max_episode_steps
     window, final_window = config.smoothing_window, config.final_window

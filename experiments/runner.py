@@ -66,31 +66,37 @@ def prepare_folder(config: ExperimentConfig, out_dir: Path) -> None:
         if differences:
             raise ConfigError(
                 f"{out_dir} holds results of a different experiment (differs in "
-                f"{', '.join(differences)}); choose another --out or delete the folder")
+                f"{', '.join(differences)}); choose another --out or delete the folder"
+            )
         config = config if config.runs >= previous.runs else previous
     store.atomic_write_text(recorded, config_module.dumps(config))
     store.remove_stale_temporaries(out_dir / RUN_DIR)
 
 
-def select_strategies(config: ExperimentConfig, names: Collection[str] | None,
-                      option: str = "--only") -> frozenset[str] | None:
+def select_strategies(
+    config: ExperimentConfig, names: Collection[str] | None, option: str = "--only"
+) -> frozenset[str] | None:
     """Validate a subset of the experiment's strategy names (None: all of them)."""
     if names is None:
         return None
     known = [spec.name for spec in config.strategies]
     if not names:
-        raise ConfigError(f"option {option}: no strategy named; experiment {config.name!r} "
-                          f"has {', '.join(known)}")
+        raise ConfigError(
+            f"option {option}: no strategy named; experiment {config.name!r} has {', '.join(known)}"
+        )
     unknown = [name for name in names if name not in known]
     if unknown:
-        raise ConfigError(f"option {option}: unknown strategy {', '.join(map(repr, unknown))} "
-                          f"in experiment {config.name!r}; its strategies are "
-                          f"{', '.join(known)}")
+        raise ConfigError(
+            f"option {option}: unknown strategy {', '.join(map(repr, unknown))} "
+            f"in experiment {config.name!r}; its strategies are "
+            f"{', '.join(known)}"
+        )
     return frozenset(names)
 
 
-def pending_runs(config: ExperimentConfig, out_dir: Path,
-                 only: Collection[str] | None = None) -> list[RunSpec]:
+def pending_runs(
+    config: ExperimentConfig, out_dir: Path, only: Collection[str] | None = None
+) -> list[RunSpec]:
     """The runs of ``config`` (of the strategies in ``only``, if given) not in ``out_dir`` yet."""
     run_dir = out_dir / RUN_DIR
     return [spec for spec in plan(config, only) if not store.is_finished(run_dir, spec.name)]
@@ -156,4 +162,3 @@ def load_results(config: ExperimentConfig, out_dir: Path) -> dict[str, list[stor
         if store.is_finished(run_dir, spec.name):
             results[spec.strategy.name].append(store.read_run(run_dir, spec.name))
     return results
-

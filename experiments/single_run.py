@@ -37,9 +37,13 @@ class SingleRun:
     """One greedy episode of the trained agent (seeded with the run's environment seed)."""
 
 
-def train_and_save(config: ExperimentConfig, seed: int, out: Path,
-                   on_start: Callable[[float], None] | None = None,
-                   on_episode: Callable[[store.EpisodeRow], None] | None = None) -> SingleRun:
+def train_and_save(
+    config: ExperimentConfig,
+    seed: int,
+    out: Path,
+    on_start: Callable[[float], None] | None = None,
+    on_episode: Callable[[store.EpisodeRow], None] | None = None,
+) -> SingleRun:
     """Train the first strategy of ``config`` with run seed ``seed`` and write ``out``.
 
     ``on_start(optimal_steps)`` is called once the environment exists, ``on_episode(row)``
@@ -55,36 +59,65 @@ def train_and_save(config: ExperimentConfig, seed: int, out: Path,
         optimal = factory.optimal_steps(env)
         if on_start is not None:
             on_start(optimal)
-        training = train(env, agent, config.episodes, env_seed=seeds.env,
-                         time_budget_s=config.time_budget_s, on_episode=on_episode)
+        training = train(
+            env,
+            agent,
+            config.episodes,
+            env_seed=seeds.env,
+            time_budget_s=config.time_budget_s,
+            on_episode=on_episode,
+        )
         greedy = greedy_episode(env, agent, seed=seeds.env)
         layout, directions = factory.maze_geometry(env)
     finally:
         env.close()
     _write(config, seed, seeds, out, training, optimal, agent)
     plots.learning_curve(
-        np.array([r[1] for r in training.rows]), np.array([r[5] for r in training.rows]),
-        optimal, out / "learning_curve.png", window=config.smoothing_window,
-        title=f"{strategy.name}, seed {seed}", cap=config.env.max_episode_steps)
-    partition_figure(agent, layout, directions, out / "partition.png",
-                     title=f"{strategy.name}: {agent.n_leaves} leaves, greedy actions; "
-                           f"greedy episode {greedy.steps} steps",
-                     trajectory=greedy.positions)
+        np.array([r[1] for r in training.rows]),
+        np.array([r[5] for r in training.rows]),
+        optimal,
+        out / "learning_curve.png",
+        window=config.smoothing_window,
+        title=f"{strategy.name}, seed {seed}",
+        cap=config.env.max_episode_steps,
+    )
+    partition_figure(
+        agent,
+        layout,
+        directions,
+        out / "partition.png",
+        title=f"{strategy.name}: {agent.n_leaves} leaves, greedy actions; "
+        f"greedy episode {greedy.steps} steps",
+        trajectory=greedy.positions,
+    )
     return SingleRun(out, training, optimal, agent.n_leaves, greedy)
 
 
-def _write(config: ExperimentConfig, seed: int, seeds: Any, out: Path, training: Training,
-           optimal: float, agent: Any) -> None:
+def _write(
+    config: ExperimentConfig,
+    seed: int,
+    seeds: Any,
+    out: Path,
+    training: Training,
+    optimal: float,
+    agent: Any,
+) -> None:
     rows = training.rows
     out.mkdir(parents=True, exist_ok=True)
     store.atomic_write_text(out / "episodes.csv", store.format_rows(rows))
     store.atomic_write_text(out / "config.toml", config_module.dumps(config))
-    meta = {"strategy": config.strategies[0].name, "seed": seed, "env_seed": seeds.env,
-            "agent_seed": seeds.agent, "episodes": len(rows),
-            "stopped_by_time_budget": training.stopped_by_budget,
-            "wall_time_s": training.wall_time_s, "env_steps": training.env_steps,
-            "steps_per_second": training.steps_per_second, "optimal_steps": optimal,
-            "leaves": agent.n_leaves}
+    meta = {
+        "strategy": config.strategies[0].name,
+        "seed": seed,
+        "env_seed": seeds.env,
+        "agent_seed": seeds.agent,
+        "episodes": len(rows),
+        "stopped_by_time_budget": training.stopped_by_budget,
+        "wall_time_s": training.wall_time_s,
+        "env_steps": training.env_steps,
+        "steps_per_second": training.steps_per_second,
+        "optimal_steps": optimal,
+        "leaves": agent.n_leaves,
+    }
     store.atomic_write_text(out / "meta.json", json.dumps(meta, indent=2) + "\n")
     agent.save(out / "agent.npz")
-

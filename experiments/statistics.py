@@ -50,8 +50,9 @@ def bootstrap_mean_band(
     return mean, low, high
 
 
-def bootstrap_ci(scores: np.ndarray, statistic: str = "mean", confidence: float = 0.95,
-                 seed: int = 0) -> tuple[float, float]:
+def bootstrap_ci(
+    scores: np.ndarray, statistic: str = "mean", confidence: float = 0.95, seed: int = 0
+) -> tuple[float, float]:
     """Percentile bootstrap interval of the mean or IQM of per-run scores (scipy.stats)."""
     data = np.asarray(scores, dtype=float)
     if data.size < 2 or np.all(data == data[0]):
@@ -59,8 +60,14 @@ def bootstrap_ci(scores: np.ndarray, statistic: str = "mean", confidence: float 
         return value, value
     function = np.mean if statistic == "mean" else interquartile_mean
     result = scipy_stats.bootstrap(
-        (data,), function, confidence_level=confidence, n_resamples=2000,
-        method="percentile", rng=np.random.default_rng(seed), vectorized=False)
+        (data,),
+        function,
+        confidence_level=confidence,
+        n_resamples=2000,
+        method="percentile",
+        rng=np.random.default_rng(seed),
+        vectorized=False,
+    )
     return float(result.confidence_interval.low), float(result.confidence_interval.high)
 
 
@@ -85,9 +92,14 @@ def probability_of_improvement(candidate: np.ndarray, baseline: np.ndarray) -> f
     return float(statistic) / (x.size * y.size)
 
 
-def convergence_episode(steps: np.ndarray, window: int = 50, tolerance: float = 0.1,
-                        final_window: int = 100, final_success: float | None = None,
-                        min_final_success: float = 0.5) -> int | None:
+def convergence_episode(
+    steps: np.ndarray,
+    window: int = 50,
+    tolerance: float = 0.1,
+    final_window: int = 100,
+    final_success: float | None = None,
+    min_final_success: float = 0.5,
+) -> int | None:
     """Episode (1-based) after which the moving average stays within ``tolerance`` of the end.
 
     The end value is the mean of the last ``final_window`` episodes. The run has converged at
@@ -153,11 +165,18 @@ class StrategySummary:
         return float(np.median(done)) if done else None
 
 
-def summarize(strategy: str, steps: np.ndarray, successes: np.ndarray, leaves: np.ndarray,
-              baseline_final: np.ndarray | None, window: int = 50,
-              final_window: int = 100, tolerance: float = 0.1,
-              wall_time_s: np.ndarray | None = None,
-              steps_per_second: np.ndarray | None = None) -> StrategySummary:
+def summarize(
+    strategy: str,
+    steps: np.ndarray,
+    successes: np.ndarray,
+    leaves: np.ndarray,
+    baseline_final: np.ndarray | None,
+    window: int = 50,
+    final_window: int = 100,
+    tolerance: float = 0.1,
+    wall_time_s: np.ndarray | None = None,
+    steps_per_second: np.ndarray | None = None,
+) -> StrategySummary:
     """Compute a strategy's row from its runs x episodes arrays."""
     steps = np.atleast_2d(np.asarray(steps, dtype=float))
     successes = np.atleast_2d(np.asarray(successes, dtype=float))
@@ -174,15 +193,26 @@ def summarize(strategy: str, steps: np.ndarray, successes: np.ndarray, leaves: n
         success_rate=successes.mean(axis=1),
         final_success_rate=final_success,
         leaves=leaves[:, -1],
-        convergence=[convergence_episode(run, window, tolerance, final_window=final_window,
-                                         final_success=rate)
-                     for run, rate in zip(steps, final_success, strict=True)],
-        curve_convergence=convergence_episode(steps.mean(axis=0), window, tolerance,
-                                              final_window=final_window,
-                                              final_success=float(final_success.mean())),
+        convergence=[
+            convergence_episode(
+                run, window, tolerance, final_window=final_window, final_success=rate
+            )
+            for run, rate in zip(steps, final_success, strict=True)
+        ],
+        curve_convergence=convergence_episode(
+            steps.mean(axis=0),
+            window,
+            tolerance,
+            final_window=final_window,
+            final_success=float(final_success.mean()),
+        ),
         wall_time_s=nan if wall_time_s is None else np.asarray(wall_time_s, dtype=float),
-        steps_per_second=(nan if steps_per_second is None
-                          else np.asarray(steps_per_second, dtype=float)),
-        p_improvement=(float("nan") if baseline_final is None
-                       else probability_of_improvement(final, baseline_final)),
+        steps_per_second=(
+            nan if steps_per_second is None else np.asarray(steps_per_second, dtype=float)
+        ),
+        p_improvement=(
+            float("nan")
+            if baseline_final is None
+            else probability_of_improvement(final, baseline_final)
+        ),
     )

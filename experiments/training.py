@@ -49,8 +49,15 @@ class Training:
 
 def episode_row(stats: Any, episode: int) -> EpisodeRow:
     """A CSV row from an ``agent.EpisodeStats`` (numbered by the harness, from 1)."""
-    return (episode, int(stats.steps), float(stats.episode_return), bool(stats.success),
-            bool(stats.truncated), int(stats.leaves), int(stats.collisions))
+    return (
+        episode,
+        int(stats.steps),
+        float(stats.episode_return),
+        bool(stats.success),
+        bool(stats.truncated),
+        int(stats.leaves),
+        int(stats.collisions),
+    )
 
 
 def resident_memory_mb() -> float:
@@ -63,10 +70,15 @@ def resident_memory_mb() -> float:
         return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
-def train(env: gym.Env, agent: Any, episodes: int, env_seed: int | None = None,
-          time_budget_s: float | None = None,
-          on_episode: Callable[[EpisodeRow], None] | None = None,
-          memory_every: int = 0) -> Training:
+def train(
+    env: gym.Env,
+    agent: Any,
+    episodes: int,
+    env_seed: int | None = None,
+    time_budget_s: float | None = None,
+    on_episode: Callable[[EpisodeRow], None] | None = None,
+    memory_every: int = 0,
+) -> Training:
     """Run ``agent.learn`` for up to ``episodes`` episodes, or until the time budget is spent.
 
     The budget is checked after each episode (an episode is never cut), so a budgeted run is
@@ -102,17 +114,27 @@ def train_run(spec: RunSpec) -> RunResult:
         agent = factory.make_agent(experiment, strategy, env, seeds.agent)
         rss_start = resident_memory_mb()
         memory_every = max(1, experiment.episodes // 20)
-        training = train(env, agent, experiment.episodes, env_seed=seeds.env,
-                         memory_every=memory_every)
+        training = train(
+            env, agent, experiment.episodes, env_seed=seeds.env, memory_every=memory_every
+        )
         optimal = factory.optimal_steps(env)
     finally:
         env.close()
     return RunResult(
-        strategy=strategy.name, run_index=spec.run_index, seed=spec.seed,
-        rows=tuple(training.rows), wall_time_s=training.wall_time_s,
-        env_steps=training.env_steps, optimal_steps=optimal,
-        meta={"env_seed": seeds.env, "agent_seed": seeds.agent, "pid": os.getpid(),
-              "cpu_time_s": training.cpu_time_s,
-              "rss_mb_start": rss_start, "rss_mb": training.rss_mb,
-              "rss_mb_every_episodes": memory_every},
+        strategy=strategy.name,
+        run_index=spec.run_index,
+        seed=spec.seed,
+        rows=tuple(training.rows),
+        wall_time_s=training.wall_time_s,
+        env_steps=training.env_steps,
+        optimal_steps=optimal,
+        meta={
+            "env_seed": seeds.env,
+            "agent_seed": seeds.agent,
+            "pid": os.getpid(),
+            "cpu_time_s": training.cpu_time_s,
+            "rss_mb_start": rss_start,
+            "rss_mb": training.rss_mb,
+            "rss_mb_every_episodes": memory_every,
+        },
     )

@@ -55,7 +55,8 @@ def test_spaces(make_env: Callable[..., gym.Env]) -> None:
     ids=["kinematic", "dynamic", "husky", "rgb_array"],
 )
 def test_check_env_passes_without_warnings(
-    make_env: Callable[..., gym.Env], kwargs: dict[str, object],
+    make_env: Callable[..., gym.Env],
+    kwargs: dict[str, object],
 ) -> None:
     env = make_env(**kwargs)
     with warnings.catch_warnings():
@@ -144,7 +145,9 @@ def test_reset_options_move_start_and_goal(make_env: Callable[..., gym.Env]) -> 
     ],
 )
 def test_bad_reset_options(
-    make_env: Callable[..., gym.Env], options: dict[str, object], message: str,
+    make_env: Callable[..., gym.Env],
+    options: dict[str, object],
+    message: str,
 ) -> None:
     env = make_env()
     with pytest.raises(ValueError, match=message):
@@ -165,17 +168,27 @@ radius 2 (4 across), wide enough for one of radius 1."""
 
 
 def test_reset_refuses_a_goal_or_start_the_robot_cannot_reach(
-    make_env: Callable[..., gym.Env], write_maze: Callable[[str], Path],
+    make_env: Callable[..., gym.Env],
+    write_maze: Callable[[str], Path],
 ) -> None:
     env = make_env(maze=write_maze(SMALL_MAZE + POCKET))
-    with pytest.raises(ValueError, match=r"options\['goal'\] = \(80\.0, 20\.0\).*cannot be "
-                                         r"reached from the start \(20\.0, 20\.0\).*radius 2"):
+    with pytest.raises(
+        ValueError,
+        match=r"options\['goal'\] = \(80\.0, 20\.0\).*cannot be "
+        r"reached from the start \(20\.0, 20\.0\).*radius 2",
+    ):
         env.reset(seed=0, options={"goal": (80.0, 20.0)})
-    with pytest.raises(ValueError, match=r"options\['start'\] = \(80\.0, 20\.0\): the goal "
-                                         r"circle around \(80\.0, 80\.0\) cannot be reached"):
+    with pytest.raises(
+        ValueError,
+        match=r"options\['start'\] = \(80\.0, 20\.0\): the goal "
+        r"circle around \(80\.0, 80\.0\) cannot be reached",
+    ):
         env.reset(seed=0, options={"start": (80.0, 20.0, 0.0)})
-    with pytest.raises(ValueError, match=r"options\['goal'\] = \(80\.0, 20\.0\).*from "
-                                         r"options\['start'\] = \(30\.0, 60\.0\)"):
+    with pytest.raises(
+        ValueError,
+        match=r"options\['goal'\] = \(80\.0, 20\.0\).*from "
+        r"options\['start'\] = \(30\.0, 60\.0\)",
+    ):
         env.reset(seed=0, options={"start": (30.0, 60.0), "goal": (80.0, 20.0)})
     # Both inside the pocket, or both outside: fine; a refused reset leaves the env usable.
     obs, info = env.reset(seed=0, options={"start": (70.0, 10.0), "goal": (85.0, 25.0)})
@@ -191,11 +204,20 @@ def test_reset_refuses_a_goal_or_start_the_robot_cannot_reach(
 
 @pytest.mark.parametrize(
     ("action", "error"),
-    [(4, ValueError), (-1, ValueError), (1.0, TypeError), ("up", TypeError),
-     (True, TypeError), (None, TypeError), (np.array([1, 2]), TypeError)],
+    [
+        (4, ValueError),
+        (-1, ValueError),
+        (1.0, TypeError),
+        ("up", TypeError),
+        (True, TypeError),
+        (None, TypeError),
+        (np.array([1, 2]), TypeError),
+    ],
 )
 def test_invalid_actions_are_clear_errors(
-    make_env: Callable[..., gym.Env], action: object, error: type[Exception],
+    make_env: Callable[..., gym.Env],
+    action: object,
+    error: type[Exception],
 ) -> None:
     env = make_env().unwrapped
     env.reset(seed=0)
@@ -227,7 +249,9 @@ def test_valid_action_types(make_env: Callable[..., gym.Env]) -> None:
     ],
 )
 def test_bad_constructor_arguments(
-    kwargs: dict[str, object], error: type[Exception], message: str,
+    kwargs: dict[str, object],
+    error: type[Exception],
+    message: str,
 ) -> None:
     with pytest.raises(error, match=message):
         BulletMazeEnv(**kwargs)

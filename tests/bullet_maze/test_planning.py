@@ -70,7 +70,8 @@ def test_a_larger_robot_needs_a_longer_path() -> None:
 
 @pytest.mark.parametrize("name", ["paper", "paper_narrow", "corridors"])
 def test_the_lattice_path_succeeds_in_the_simulator(
-    make_env: Callable[..., gym.Env], name: str,
+    make_env: Callable[..., gym.Env],
+    name: str,
 ) -> None:
     env = make_env(maze=name, noise_variance=0.0)
     env.reset(seed=0)

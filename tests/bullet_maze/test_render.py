@@ -81,7 +81,8 @@ def test_render_without_a_mode_returns_none(make_env: Callable[..., gym.Env]) ->
 
 
 def test_human_mode_without_a_display_runs_headless(
-    make_env: Callable[..., gym.Env], monkeypatch: pytest.MonkeyPatch,
+    make_env: Callable[..., gym.Env],
+    monkeypatch: pytest.MonkeyPatch,
     caplog: pytest.LogCaptureFixture,
 ) -> None:
     monkeypatch.delenv("DISPLAY", raising=False)

@@ -104,7 +104,8 @@ def test_husky_dynamic_collision_reverts(make_env: Callable[..., gym.Env]) -> No
 
 
 def test_user_urdf_is_a_holonomic_body(
-    make_env: Callable[..., gym.Env], box_urdf: Path,
+    make_env: Callable[..., gym.Env],
+    box_urdf: Path,
 ) -> None:
     env = make_env(maze="open", robot=str(box_urdf), noise_variance=0.0)
     robot = env.unwrapped.robot
@@ -143,7 +144,9 @@ def test_malformed_urdf_names_the_path(tmp_path: Path) -> None:
 
 def test_urdf_without_collision_geometry_is_refused(tmp_path: Path) -> None:
     path = tmp_path / "ghost_shape.urdf"
-    path.write_text('<robot name="g"><link name="base"><visual><geometry><box size="1 1 1"/>'
-                    "</geometry></visual></link></robot>")
+    path.write_text(
+        '<robot name="g"><link name="base"><visual><geometry><box size="1 1 1"/>'
+        "</geometry></visual></link></robot>"
+    )
     with pytest.raises(ValueError, match=r"ghost_shape\.urdf.*no collision geometry"):
         BulletMazeEnv(robot=str(path))

@@ -23,8 +23,7 @@ def test_displacements_have_the_papers_mean_and_variance(
     n = 2000
     moves = []
     actions = [Action.RIGHT, Action.UP, Action.LEFT, Action.DOWN]
-    expected = {Action.UP: (0, 5), Action.DOWN: (0, -5), Action.LEFT: (-5, 0),
-                Action.RIGHT: (5, 0)}
+    expected = {Action.UP: (0, 5), Action.DOWN: (0, -5), Action.LEFT: (-5, 0), Action.RIGHT: (5, 0)}
     for i in range(n):
         action = actions[i % 4]
         new, reward, terminated, _truncated, info = env.step(action)
@@ -115,7 +114,8 @@ def test_truncation_at_the_papers_cap(make_env: Callable[..., gym.Env]) -> None:
 
 
 def test_no_tunnelling_through_a_wall_thinner_than_a_step(
-    make_env: Callable[..., gym.Env], write_maze: Callable[[str], Path],
+    make_env: Callable[..., gym.Env],
+    write_maze: Callable[[str], Path],
 ) -> None:
     # A 0.2-unit wall at y = 50 with a gap on the right; the robot (radius 2) sits 10 below it
     # and moves 25 up: both ends of the move are free, the path is not.
@@ -136,7 +136,8 @@ def test_no_tunnelling_through_a_wall_thinner_than_a_step(
 
 
 def test_grazing_a_wall_counts_only_when_touching(
-    make_env: Callable[..., gym.Env], write_maze: Callable[[str], Path],
+    make_env: Callable[..., gym.Env],
+    write_maze: Callable[[str], Path],
 ) -> None:
     wall = "[[walls]]\ncenter = [50.0, 50.0]\nsize = [10.0, 10.0]\n"  # box x in [45, 55]
     env = make_env(maze=write_maze(SMALL_MAZE + wall), step_size=20.0, noise_variance=0.0)

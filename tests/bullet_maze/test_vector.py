@@ -35,8 +35,9 @@ def test_sync_and_async_agree() -> None:
 def test_async_spawned_workers_register_the_ids() -> None:
     # A spawned worker imports nothing of ours until it makes the env from its spec; the entry
     # point's import must register the ids there (Gymnasium #222).
-    envs = gym.make_vec("BulletMaze-v0", num_envs=2, vectorization_mode="async",
-                        vector_kwargs={"context": "spawn"})
+    envs = gym.make_vec(
+        "BulletMaze-v0", num_envs=2, vectorization_mode="async", vector_kwargs={"context": "spawn"}
+    )
     trace = _run(envs)
     sync = _run(gym.make_vec("BulletMaze-v0", num_envs=2, vectorization_mode="sync"))
     assert trace.tobytes() == sync.tobytes()

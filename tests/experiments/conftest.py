@@ -15,8 +15,15 @@ from experiments.config import ExperimentConfig, parse_config
 HERE = Path(__file__).resolve().parent
 
 SMALL = {
-    "experiment": {"name": "small", "seed": 7, "runs": 3, "episodes": 120, "baseline": "eps",
-                   "smoothing_window": 10, "final_window": 20},
+    "experiment": {
+        "name": "small",
+        "seed": 7,
+        "runs": 3,
+        "episodes": 120,
+        "baseline": "eps",
+        "smoothing_window": 10,
+        "final_window": 20,
+    },
     "env": {"maze": "paper", "max_episode_steps": 300},
     "agent": {"alpha": 0.3, "gamma": 0.99},
     "strategy": [

@@ -25,8 +25,15 @@ def fake_run(spec: RunSpec) -> RunResult:
     curve = level + (cap - level) * np.exp(-np.arange(episodes) / (episodes / 5))
     steps = np.minimum(cap, np.round(curve * rng.lognormal(0, 0.2, episodes))).astype(int)
     rows = tuple(
-        (i + 1, int(s), 5.0 - 0.01 * (int(s) - 1) if s < cap else -0.01 * int(s), bool(s < cap),
-         bool(s >= cap), 1 + i // 3, int(rng.integers(0, 4)))
+        (
+            i + 1,
+            int(s),
+            5.0 - 0.01 * (int(s) - 1) if s < cap else -0.01 * int(s),
+            bool(s < cap),
+            bool(s >= cap),
+            1 + i // 3,
+            int(rng.integers(0, 4)),
+        )
         for i, s in enumerate(steps)
     )
     if os.environ.get("STANDIN_SLEEP"):
@@ -34,5 +41,13 @@ def fake_run(spec: RunSpec) -> RunResult:
     if os.environ.get("STANDIN_LOG"):
         with open(os.environ["STANDIN_LOG"], "a", encoding="utf-8") as handle:
             handle.write(spec.name + "\n")
-    return RunResult(spec.strategy.name, spec.run_index, spec.seed, rows, wall_time_s=0.5,
-                     env_steps=int(steps.sum()), optimal_steps=20.0, meta={"pid": os.getpid()})
+    return RunResult(
+        spec.strategy.name,
+        spec.run_index,
+        spec.seed,
+        rows,
+        wall_time_s=0.5,
+        env_steps=int(steps.sum()),
+        optimal_steps=20.0,
+        meta={"pid": os.getpid()},
+    )

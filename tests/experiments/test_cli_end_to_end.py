@@ -78,18 +78,41 @@ def read_csv(path: Path) -> list[dict[str, str]]:
 def trained(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]:
     """A folder written by ``run.py train`` (small), and what it printed."""
     out = tmp_path_factory.mktemp("train") / "agent"
-    argv = ["train", "--episodes", "6", "--max-episode-steps", "150", "--seed", "3",
-            "--time-budget", "0", "--no-progress", "--out", str(out)]
-    result = subprocess.run([sys.executable, str(ROOT / "run.py"), *argv], cwd=ROOT,
-                            capture_output=True, text=True, timeout=120, check=True)
+    argv = [
+        "train",
+        "--episodes",
+        "6",
+        "--max-episode-steps",
+        "150",
+        "--seed",
+        "3",
+        "--time-budget",
+        "0",
+        "--no-progress",
+        "--out",
+        str(out),
+    ]
+    result = subprocess.run(
+        [sys.executable, str(ROOT / "run.py"), *argv],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=True,
+    )
     return out, result.stdout
 
 
 def test_train_writes_its_folder(trained):
     out, stdout = trained
     assert sorted(p.name for p in out.iterdir()) == [
-        "agent.npz", "config.toml", "episodes.csv", "learning_curve.png", "meta.json",
-        "partition.png"]
+        "agent.npz",
+        "config.toml",
+        "episodes.csv",
+        "learning_curve.png",
+        "meta.json",
+        "partition.png",
+    ]
     rows = read_csv(out / "episodes.csv")
     assert list(rows[0]) == list(store.COLUMNS)
     assert [int(r["episode"]) for r in rows] == list(range(1, 7))
@@ -111,16 +134,35 @@ def test_train_writes_its_folder(trained):
 
 def test_same_seed_same_training(trained, tmp_path: Path):
     out, _ = trained
-    assert run.main(["train", "--episodes", "6", "--max-episode-steps", "150", "--seed", "3",
-                     "--time-budget", "0", "--no-progress", "--out", str(tmp_path)]) == 0
+    assert (
+        run.main(
+            [
+                "train",
+                "--episodes",
+                "6",
+                "--max-episode-steps",
+                "150",
+                "--seed",
+                "3",
+                "--time-budget",
+                "0",
+                "--no-progress",
+                "--out",
+                str(tmp_path),
+            ]
+        )
+        == 0
+    )
     assert (tmp_path / "episodes.csv").read_bytes() == (out / "episodes.csv").read_bytes()
 
 
 def test_default_job_runs_the_quick_config(tmp_path: Path, monkeypatch, capsys):
     (tmp_path / "q.toml").write_text(
-        (ROOT / "experiments" / "quick.toml").read_text()
+        (ROOT / "experiments" / "quick.toml")
+        .read_text()
         .replace("episodes = 4000", "episodes = 3")
-        .replace("max_episode_steps = 5000", "max_episode_steps = 100"))
+        .replace("max_episode_steps = 5000", "max_episode_steps = 100")
+    )
     monkeypatch.setattr(run, "DEFAULT_CONFIG", str(tmp_path / "q.toml"))
     monkeypatch.setattr(run, "RESULTS_DIR", tmp_path / "results")
     assert run.main([]) == 0
@@ -134,16 +176,46 @@ def test_default_job_runs_the_quick_config(tmp_path: Path, monkeypatch, capsys):
 
 
 def test_time_budget_stops_training(tmp_path: Path, capsys):
-    assert run.main(["train", "--episodes", "1000", "--max-episode-steps", "100",
-                     "--time-budget", "0.01", "--no-progress", "--out", str(tmp_path)]) == 0
+    assert (
+        run.main(
+            [
+                "train",
+                "--episodes",
+                "1000",
+                "--max-episode-steps",
+                "100",
+                "--time-budget",
+                "0.01",
+                "--no-progress",
+                "--out",
+                str(tmp_path),
+            ]
+        )
+        == 0
+    )
     assert len(read_csv(tmp_path / "episodes.csv")) < 1000
     assert "stopped by the time budget" in capsys.readouterr().out
 
 
 def test_evaluate_in_dynamic_mode_with_the_husky(trained, capsys):
     out, _ = trained
-    assert run.main(["evaluate", str(out), "--episodes", "1", "--mode", "dynamic",
-                     "--robot", "husky", "--max-episode-steps", "5"]) == 0
+    assert (
+        run.main(
+            [
+                "evaluate",
+                str(out),
+                "--episodes",
+                "1",
+                "--mode",
+                "dynamic",
+                "--robot",
+                "husky",
+                "--max-episode-steps",
+                "5",
+            ]
+        )
+        == 0
+    )
     printed = capsys.readouterr().out
     assert "heading dropped" in printed
     assert "success rate: 0.0%" in printed
@@ -156,8 +228,12 @@ def test_evaluate_reports_success_and_steps(trained, capsys):
     from experiments.evaluation import evaluate
 
     out, _ = trained
-    assert run.main(["evaluate", str(out / "agent.npz"), "--episodes", "2",
-                     "--max-episode-steps", "50"]) == 0
+    assert (
+        run.main(
+            ["evaluate", str(out / "agent.npz"), "--episodes", "2", "--max-episode-steps", "50"]
+        )
+        == 0
+    )
     printed = capsys.readouterr().out
     assert "2 greedy episodes" in printed
     agent = factory.load_agent(out / "agent.npz")
@@ -176,16 +252,41 @@ def test_evaluate_reports_success_and_steps(trained, capsys):
 def test_render_writes_a_gif(trained, tmp_path: Path):
     out, _ = trained
     gif = tmp_path / "episode.gif"
-    assert run.main(["render", str(out), "--out", str(gif), "--max-episode-steps", "20",
-                     "--max-frames", "5"]) == 0
+    assert (
+        run.main(
+            [
+                "render",
+                str(out),
+                "--out",
+                str(gif),
+                "--max-episode-steps",
+                "20",
+                "--max-frames",
+                "5",
+            ]
+        )
+        == 0
+    )
     assert gif.read_bytes()[:6] == b"GIF89a"
 
 
 def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys):
     config = tiny_config(tmp_path)
     for workers in ("1", "2"):
-        assert run.main(["experiment", str(config), "--workers", workers, "--no-progress",
-                         "--out", str(tmp_path / f"w{workers}")]) == 0
+        assert (
+            run.main(
+                [
+                    "experiment",
+                    str(config),
+                    "--workers",
+                    workers,
+                    "--no-progress",
+                    "--out",
+                    str(tmp_path / f"w{workers}"),
+                ]
+            )
+            == 0
+        )
     one, two = tmp_path / "w1", tmp_path / "w2"
     assert (one / "episodes.csv").read_bytes() == (two / "episodes.csv").read_bytes()
     rows = read_csv(one / "episodes.csv")
@@ -205,10 +306,20 @@ def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys):
 def test_experiment_resumes_after_a_kill(tmp_path: Path):
     config = tiny_config(tmp_path, episodes=30, cap=300, runs=3)
     out = tmp_path / "killed"
-    command = [sys.executable, str(ROOT / "run.py"), "experiment", str(config), "--backend",
-               "serial", "--no-progress", "--out", str(out)]
-    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL,
-                               stderr=subprocess.DEVNULL)
+    command = [
+        sys.executable,
+        str(ROOT / "run.py"),
+        "experiment",
+        str(config),
+        "--backend",
+        "serial",
+        "--no-progress",
+        "--out",
+        str(out),
+    ]
+    process = subprocess.Popen(
+        command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
     deadline = time.monotonic() + 60
     while not list((out / "runs").glob("*.csv")) and time.monotonic() < deadline:
         time.sleep(0.01)
@@ -232,12 +343,29 @@ def test_ray_backend_gives_the_same_csv(tmp_path: Path):
     pytest.importorskip("ray")
     config = tiny_config(tmp_path, runs=1)
     for backend in ("serial", "ray"):
-        assert run.main(["experiment", str(config), "--backend", backend, "--workers", "2",
-                         "--no-progress", "--out", str(tmp_path / backend)]) == 0
+        assert (
+            run.main(
+                [
+                    "experiment",
+                    str(config),
+                    "--backend",
+                    backend,
+                    "--workers",
+                    "2",
+                    "--no-progress",
+                    "--out",
+                    str(tmp_path / backend),
+                ]
+            )
+            == 0
+        )
     assert (tmp_path / "ray" / "episodes.csv").read_bytes() == (
-        tmp_path / "serial" / "episodes.csv").read_bytes()
-    meta = [store.read_run(tmp_path / "ray" / "runs", p.stem).meta
-            for p in (tmp_path / "ray" / "runs").glob("*.csv")]
+        tmp_path / "serial" / "episodes.csv"
+    ).read_bytes()
+    meta = [
+        store.read_run(tmp_path / "ray" / "runs", p.stem).meta
+        for p in (tmp_path / "ray" / "runs").glob("*.csv")
+    ]
     assert len(meta) == 3
     assert all(m["meta"]["pid"] != os.getpid() for m in meta)
     assert all(np.isfinite(m["steps_per_second"]) for m in meta)

@@ -44,8 +44,7 @@ def test_bad_options_name_the_option(argv, named, capsys):
         (["train", "--param", "epsilonn=0.1", "--episodes", "1"], "epsilonn"),
         (["train", "--agent-param", "alpha=7", "--episodes", "1"], "alpha"),
         (["evaluate", "no/such/agent.npz"], "no/such/agent.npz"),
-        (["experiment", "quick", "--only", "eps-greedy-0.15", "--out", "{tmp}"],
-         "eps-greedy-0.15"),
+        (["experiment", "quick", "--only", "eps-greedy-0.15", "--out", "{tmp}"], "eps-greedy-0.15"),
     ],
 )
 def test_bad_values_are_named(argv, named, capsys, tmp_path: Path):
@@ -54,8 +53,7 @@ def test_bad_values_are_named(argv, named, capsys, tmp_path: Path):
 
 def test_unknown_config_key_names_file_and_key(tmp_path: Path, capsys):
     path = tmp_path / "typo.toml"
-    path.write_text(
-        '[experiment]\nname = "typo"\nepisodez = 10\n[[strategy]]\nname = "a"\n')
+    path.write_text('[experiment]\nname = "typo"\nepisodez = 10\n[[strategy]]\nname = "a"\n')
     error = _fails(["experiment", str(path)], capsys)
     assert "typo.toml" in error
     assert "episodez" in error

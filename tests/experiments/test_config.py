@@ -100,8 +100,7 @@ def test_overrides_and_differences(small_config):
     assert more.episodes == small_config.episodes
     assert same_experiment(small_config, more) == []
     longer = with_overrides(small_config, episodes=500, max_episode_steps=100)
-    assert same_experiment(small_config, longer) == ["env.max_episode_steps",
-                                                     "experiment.episodes"]
+    assert same_experiment(small_config, longer) == ["env.max_episode_steps", "experiment.episodes"]
     with pytest.raises(ConfigError, match="--runs"):
         with_overrides(small_config, runs=0)
 
@@ -121,8 +120,11 @@ def test_paper_fig4_is_the_papers_setting():
     explorations = {s.exploration for s in config.strategies}
     assert {"epsilon-greedy", "adaptive", "tabu", "adaptive+tabu", "vdbe"} <= explorations
     assert sum(s.agent == "grid" for s in config.strategies) >= 2
-    epsilons = {s.exploration_params.get("epsilon") for s in config.strategies
-                if s.exploration == "epsilon-greedy" and s.agent == "tree"}
+    epsilons = {
+        s.exploration_params.get("epsilon")
+        for s in config.strategies
+        if s.exploration == "epsilon-greedy" and s.agent == "tree"
+    }
     assert 0.015 in epsilons
     assert len(epsilons) >= 3
 

@@ -24,8 +24,8 @@ def split_agent():
     left, right = agent.split_leaf(0, 0, 150.0)
     low, high = agent.split_leaf(right, 1, 100.0)
     agent.q[left] = [1.0, 0.0, 0.0, 0.0]  # up
-    agent.q[low] = [0.0, 0.0, 0.0, 2.0]   # right
-    agent.q[high] = [0.0] * 4             # nothing learned
+    agent.q[low] = [0.0, 0.0, 0.0, 2.0]  # right
+    agent.q[high] = [0.0] * 4  # nothing learned
     return agent, (left, low, high)
 
 
@@ -40,8 +40,7 @@ def test_partition_figure_is_a_png(split_agent, tmp_path: Path):
     agent, _ = split_agent
     layout = layout_module.load_layout("paper")
     track = np.array([[150.0, 30.0], [150.0, 35.0], [155.0, 35.0]])
-    path = partition_figure(agent, layout, DIRECTIONS, tmp_path / "partition.png",
-                            trajectory=track)
+    path = partition_figure(agent, layout, DIRECTIONS, tmp_path / "partition.png", trajectory=track)
     data = path.read_bytes()
     assert data[:8] == PNG_SIGNATURE
     assert len(data) > 10_000
@@ -55,8 +54,7 @@ def test_gif_has_one_frame_per_sampled_step(split_agent, tmp_path: Path):
     agent, _ = split_agent
     layout = layout_module.load_layout("paper")
     positions = np.column_stack([np.full(41, 150.0), np.linspace(30, 230, 41)])
-    path = render_gif(agent, layout, DIRECTIONS, positions, tmp_path / "episode.gif",
-                      max_frames=12)
+    path = render_gif(agent, layout, DIRECTIONS, positions, tmp_path / "episode.gif", max_frames=12)
     frames = iio.imread(path, index=None)
     assert path.read_bytes()[:6] == b"GIF89a"
     assert frames.shape[0] == 12

@@ -50,8 +50,9 @@ def test_common_seeds_across_strategies(small_config):
     assert len({next(iter(s)) for s in by_run.values()}) == small_config.runs
 
 
-def test_resume_computes_only_what_is_missing(small_config, standins, tmp_path: Path,
-                                              monkeypatch: pytest.MonkeyPatch):
+def test_resume_computes_only_what_is_missing(
+    small_config, standins, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+):
     log = tmp_path / "computed.log"
     monkeypatch.setenv("STANDIN_LOG", str(log))
     out = tmp_path / "out"
@@ -69,30 +70,32 @@ def test_resume_computes_only_what_is_missing(small_config, standins, tmp_path: 
 
 
 def test_only_computes_a_subset_and_the_rest_completes_later(
-        small_config, standins, tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    small_config, standins, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+):
     log = tmp_path / "computed.log"
     monkeypatch.setenv("STANDIN_LOG", str(log))
     out = tmp_path / "out"
-    first = runner.run_experiment(small_config, out, SerialBackend(), standins.fake_run,
-                                  only=["eps"])
+    first = runner.run_experiment(
+        small_config, out, SerialBackend(), standins.fake_run, only=["eps"]
+    )
     assert {r.strategy for r in first} == {"eps"}
     assert len(first) == 3
     assert not (out / "episodes.csv").exists()
     assert {name: len(runs) for name, runs in runner.load_results(small_config, out).items()} == {
-        "eps": 3, "adaptive+tabu": 0}
+        "eps": 3,
+        "adaptive+tabu": 0,
+    }
     rest = runner.run_experiment(small_config, out, SerialBackend(), standins.fake_run)
     assert {r.strategy for r in rest} == {"adaptive+tabu"}
     assert len(rest) == 3
     runner.run_experiment(small_config, tmp_path / "whole", SerialBackend(), standins.fake_run)
-    assert (out / "episodes.csv").read_bytes() == (
-        tmp_path / "whole" / "episodes.csv").read_bytes()
+    assert (out / "episodes.csv").read_bytes() == (tmp_path / "whole" / "episodes.csv").read_bytes()
 
 
 @pytest.mark.parametrize("only", [["nope"], []])
 def test_only_names_unknown_strategies(small_config, standins, tmp_path: Path, only):
     with pytest.raises(ConfigError, match=r"--only.*(nope|no strategy).*adaptive\+tabu"):
-        runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run,
-                              only=only)
+        runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run, only=only)
 
 
 def test_a_folder_of_another_experiment_is_refused(small_config, standins, tmp_path: Path):
@@ -104,17 +107,20 @@ def test_a_folder_of_another_experiment_is_refused(small_config, standins, tmp_p
 
 def test_one_and_two_workers_give_identical_csv(small_config, standins, tmp_path: Path):
     runner.run_experiment(small_config, tmp_path / "one", ProcessBackend(1), standins.fake_run)
-    results = runner.run_experiment(small_config, tmp_path / "two", ProcessBackend(2),
-                                    standins.fake_run)
+    results = runner.run_experiment(
+        small_config, tmp_path / "two", ProcessBackend(2), standins.fake_run
+    )
     assert len({r.meta["pid"] for r in results}) == 2
     assert (tmp_path / "one" / "episodes.csv").read_bytes() == (
-        tmp_path / "two" / "episodes.csv").read_bytes()
+        tmp_path / "two" / "episodes.csv"
+    ).read_bytes()
     for path in (tmp_path / "one" / "runs").glob("*.csv"):
         assert path.read_bytes() == (tmp_path / "two" / "runs" / path.name).read_bytes()
 
 
-def test_resume_after_a_kill(small_config, standins, tmp_path: Path,
-                             monkeypatch: pytest.MonkeyPatch):
+def test_resume_after_a_kill(
+    small_config, standins, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+):
     out, log = tmp_path / "killed", tmp_path / "computed.log"
     script = textwrap.dedent(f"""
         import standins
@@ -141,8 +147,7 @@ def test_resume_after_a_kill(small_config, standins, tmp_path: Path,
     runner.run_experiment(small_config, out, SerialBackend(), standins.fake_run)
     recomputed = _computed(log)[before:]
     assert not finished & set(recomputed)
-    assert sorted(recomputed) == sorted(
-        {s.name for s in runner.plan(small_config)} - finished)
+    assert sorted(recomputed) == sorted({s.name for s in runner.plan(small_config)} - finished)
     assert not list((out / "runs").glob(".*.tmp"))
 
     fresh = tmp_path / "fresh"

@@ -67,8 +67,15 @@ def test_summarize_rows():
     steps = np.array([[100.0] * 50 + [10.0] * 150, [5000.0] * 200])
     success = (steps < 5000).astype(float)
     leaves = np.tile(np.arange(200.0), (2, 1))
-    row = st.summarize("s", steps, success, leaves, baseline_final=np.array([20.0, 20.0]),
-                       window=10, final_window=100)
+    row = st.summarize(
+        "s",
+        steps,
+        success,
+        leaves,
+        baseline_final=np.array([20.0, 20.0]),
+        window=10,
+        final_window=100,
+    )
     np.testing.assert_allclose(row.final_steps, [10, 5000])
     np.testing.assert_allclose(row.success_rate, [1, 0])
     assert row.convergence == [60, None]

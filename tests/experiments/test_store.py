@@ -27,8 +27,9 @@ def test_floats_are_written_exactly():
 
 def test_run_round_trip(tmp_path: Path):
     rows = ((1, 40, 4.61, True, False, 1, 2), (2, 5000, -50.0, False, True, 3, 0))
-    result = store.RunResult("eps", 0, 123, rows, wall_time_s=2.0, env_steps=5040,
-                             optimal_steps=30.0)
+    result = store.RunResult(
+        "eps", 0, 123, rows, wall_time_s=2.0, env_steps=5040, optimal_steps=30.0
+    )
     store.write_run(tmp_path, result)
     assert store.is_finished(tmp_path, "eps__123")
     data = store.read_run(tmp_path, "eps__123")

@@ -55,24 +55,48 @@ ROLLOUT_CASES = (
 )
 """The env rollouts recorded in ``env_rollouts.csv``."""
 
-ROLLOUT_COLUMNS = ("case", "step", "action", "x", "y", "heading", "reward", "terminated",
-                   "collision")
+ROLLOUT_COLUMNS = (
+    "case",
+    "step",
+    "action",
+    "x",
+    "y",
+    "heading",
+    "reward",
+    "terminated",
+    "collision",
+)
 
 
 def record_fig4() -> None:
     for folder, options in FIG4_RUNS.items():
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "out"
-            subprocess.run([sys.executable, str(ROOT / "run.py"), "experiment", "paper_fig4",
-                            *options, "--workers", "2", "--out", str(out), "--no-progress"],
-                           check=True, cwd=ROOT, stdout=subprocess.DEVNULL)
+            subprocess.run(
+                [
+                    sys.executable,
+                    str(ROOT / "run.py"),
+                    "experiment",
+                    "paper_fig4",
+                    *options,
+                    "--workers",
+                    "2",
+                    "--out",
+                    str(out),
+                    "--no-progress",
+                ],
+                check=True,
+                cwd=ROOT,
+                stdout=subprocess.DEVNULL,
+            )
             target = HERE / folder
             shutil.rmtree(target, ignore_errors=True)
             target.mkdir()
             for csv in sorted((out / "runs").glob("*.csv")):
                 shutil.copyfile(csv, target / csv.name)
             (target / "OPTIONS").write_text(
-                "python run.py experiment paper_fig4 " + " ".join(options) + "\n")
+                "python run.py experiment paper_fig4 " + " ".join(options) + "\n"
+            )
 
 
 def rollout_rows() -> list[tuple]:
@@ -88,8 +112,19 @@ def rollout_rows() -> list[tuple]:
             for step, action in enumerate(actions.tolist()):
                 obs, reward, terminated, truncated, info = env.step(action)
                 heading = float(obs[2]) if obs.shape[0] > 2 else 0.0
-                rows.append((case, step, action, float(obs[0]), float(obs[1]), heading,
-                             float(reward), int(terminated), int(info["collision"])))
+                rows.append(
+                    (
+                        case,
+                        step,
+                        action,
+                        float(obs[0]),
+                        float(obs[1]),
+                        heading,
+                        float(reward),
+                        int(terminated),
+                        int(info["collision"]),
+                    )
+                )
                 if terminated or truncated:
                     obs, _ = env.reset()
         finally:
@@ -110,14 +145,19 @@ def physical_limits() -> dict[str, dict[str, float | int | None]]:
     out = {}
     for name in available_layouts():
         limit = shortest_path(load_layout(name))
-        out[name] = {"length": limit.length, "l1_length": limit.l1_length,
-                     "steps": limit.steps, "lattice_steps": limit.lattice_steps}
+        out[name] = {
+            "length": limit.length,
+            "l1_length": limit.l1_length,
+            "steps": limit.steps,
+            "lattice_steps": limit.lattice_steps,
+        }
     return out
 
 
 def record_limits() -> None:
     (HERE / "physical_limits.json").write_text(
-        json.dumps(physical_limits(), indent=2, sort_keys=True) + "\n")
+        json.dumps(physical_limits(), indent=2, sort_keys=True) + "\n"
+    )
 
 
 AGENT_CASES = (
@@ -139,14 +179,30 @@ def agent_rows() -> list[tuple]:
         env = gym.make("MountainCar-v0")
         try:
             if kind == "tree":
-                agent = TreeAgent(env.observation_space, env.action_space, exploration, seed,
-                                  config)
+                agent = TreeAgent(
+                    env.observation_space, env.action_space, exploration, seed, config
+                )
             else:
-                agent = GridAgent(env.observation_space, env.action_space, exploration, seed,
-                                  config, resolution=12)
+                agent = GridAgent(
+                    env.observation_space,
+                    env.action_space,
+                    exploration,
+                    seed,
+                    config,
+                    resolution=12,
+                )
             for stats in agent.learn(env, episodes, reset_seed=seed):
-                rows.append((case, stats.episode, stats.steps, stats.episode_return,
-                             int(stats.success), stats.leaves, stats.epochs))
+                rows.append(
+                    (
+                        case,
+                        stats.episode,
+                        stats.steps,
+                        stats.episode_return,
+                        int(stats.success),
+                        stats.leaves,
+                        stats.epochs,
+                    )
+                )
         finally:
             env.close()
     return rows
@@ -158,14 +214,21 @@ def record_agents() -> None:
     (HERE / "agent_rollouts.csv").write_text(format_rows(agent_rows(), AGENT_COLUMNS))
 
 
-RECORDERS = {"env": record_rollouts, "limits": record_limits, "agents": record_agents,
-             "fig4": record_fig4}
+RECORDERS = {
+    "env": record_rollouts,
+    "limits": record_limits,
+    "agents": record_agents,
+    "fig4": record_fig4,
+}
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--only", default=",".join(RECORDERS),
-                        help=f"comma-separated subset of {', '.join(RECORDERS)}")
+    parser.add_argument(
+        "--only",
+        default=",".join(RECORDERS),
+        help=f"comma-separated subset of {', '.join(RECORDERS)}",
+    )
     args = parser.parse_args()
     for name in args.only.split(","):
         RECORDERS[name]()

@@ -27,9 +27,23 @@ _spec.loader.exec_module(record)
 def _fig4_matches(folder: str, tmp_path: Path) -> None:
     out = tmp_path / folder
     subprocess.run(
-        [sys.executable, str(record.ROOT / "run.py"), "experiment", "paper_fig4",
-         *record.FIG4_RUNS[folder], "--workers", "2", "--out", str(out), "--no-progress"],
-        check=True, cwd=record.ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        [
+            sys.executable,
+            str(record.ROOT / "run.py"),
+            "experiment",
+            "paper_fig4",
+            *record.FIG4_RUNS[folder],
+            "--workers",
+            "2",
+            "--out",
+            str(out),
+            "--no-progress",
+        ],
+        check=True,
+        cwd=record.ROOT,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
     golden = sorted((HERE / folder).glob("*.csv"))
     computed = sorted((out / "runs").glob("*.csv"))
     assert [p.name for p in computed] == [p.name for p in golden]
