@@ -562,13 +562,13 @@ def _playback_env(agent: Any, config: ExperimentConfig, render_mode: str | None 
 
     env = factory.make_experiment_env(config, render_mode)
     dims = agent.observation_space.shape[0]
-    if env.observation_space.shape[0] > dims:
+    given = int(np.prod(env.observation_space.shape or ()))
+    if given > dims:
         env = factory.ProjectObservation(env, dims)
-    elif env.observation_space.shape[0] < dims:
+    elif given < dims:
         env.close()
         raise ConfigError(
-            f"the agent observes {dims} values but robot "
-            f"{config.env.robot!r} gives {env.observation_space.shape[0]}"
+            f"the agent observes {dims} values but robot {config.env.robot!r} gives {given}"
         )
     return env
 

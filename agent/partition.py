@@ -23,8 +23,11 @@ class Partition(Protocol):
     records_errors: bool
     """Whether :meth:`record` does anything (the learner skips computing errors if not)."""
     n_leaves: int
-    n_ids: int
-    """Leaf ids are below this; the learner's tables have this many rows."""
+
+    @property
+    def n_ids(self) -> int:
+        """Leaf ids are below this; the learner's tables have this many rows."""
+        ...
 
     def leaf_of(self, x: list[float]) -> int:
         """Leaf id of the input vector ``x`` (a list of floats, for speed)."""

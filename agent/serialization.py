@@ -25,7 +25,9 @@ FORMAT = "bullet_maze.agent"
 VERSION = 1
 
 
-def _space_to_json(space: spaces.Box) -> dict[str, Any]:
+def _space_to_json(space: spaces.Space) -> dict[str, Any]:
+    if not isinstance(space, spaces.Box):
+        raise TypeError(f"only a Box observation space is saved, got {space!r}")
     return {
         "low": np.asarray(space.low, dtype=np.float64).tolist(),
         "high": np.asarray(space.high, dtype=np.float64).tolist(),

@@ -21,7 +21,7 @@ ENTRY_POINT = "bullet_maze.env:BulletMazeEnv"
 
 
 def _register_ids() -> list[str]:
-    ids = {"BulletMaze-v0": {}}
+    ids: dict[str, dict[str, str]] = {"BulletMaze-v0": {}}
     ids.update({f"BulletMaze-{name}-v0": {"maze": name} for name in available_layouts()})
     for env_id, kwargs in ids.items():
         if env_id not in registry:

@@ -220,7 +220,7 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         self._has_heading = self.robot.has_heading
         self._human = render_mode == "human"
         self._arena = self.layout.arena
-        self._moves = {
+        self._moves: dict[int | np.integer, tuple[float, float]] = {
             action: (float(mx), float(my))
             for action, (mx, my) in enumerate(DIRECTIONS * self.task.step_size)
         }

@@ -319,8 +319,8 @@ def _lattice_steps(
         nodes.append(int(pred[nodes[-1]]))
     nodes.reverse()
     actions = []
-    for a, b in itertools.pairwise(nodes):
-        (ai, aj), (bi, bj) = divmod(a, ny), divmod(b, ny)
+    for first, second in itertools.pairwise(nodes):
+        (ai, aj), (bi, bj) = divmod(first, ny), divmod(second, ny)
         move = np.array([bi - ai, bj - aj], dtype=float)
         actions.append(int(np.flatnonzero((move == DIRECTIONS).all(axis=1))[0]))
     return len(actions), tuple(actions)

@@ -150,8 +150,9 @@ def husky_urdf_text() -> str:
             continue
         origin = joint.find("origin")
         for visual in visuals:
-            if visual.find("origin") is not None:
-                visual.remove(visual.find("origin"))
+            own_origin = visual.find("origin")
+            if own_origin is not None:
+                visual.remove(own_origin)
             if origin is not None:
                 visual.insert(0, origin)
             base.append(visual)

@@ -42,9 +42,8 @@ def render_gif(
     draw_layout(axes, layout)
     radius = getattr(layout, "robot_radius", 5.0)
     (track,) = axes.plot([], [], color="tab:orange", linewidth=1.5, zorder=6)
-    robot = axes.add_patch(
-        Circle(tuple(positions[0]), radius, facecolor="tab:blue", edgecolor="k", zorder=7)
-    )
+    robot = Circle(tuple(positions[0]), radius, facecolor="tab:blue", edgecolor="k", zorder=7)
+    axes.add_patch(robot)
     label = axes.set_title(title)
     frames = []
     steps = len(positions) - 1

@@ -215,7 +215,7 @@ def parse_config(data: Mapping[str, Any], source: str = "<config>") -> Experimen
 def with_overrides(config: ExperimentConfig, **overrides: int | None) -> ExperimentConfig:
     """A copy with ``runs``/``episodes``/``seed``/``max_episode_steps`` replaced (None keeps)."""
     changes = {k: v for k, v in overrides.items() if v is not None}
-    env_changes = {}
+    env_changes: dict[str, Any] = {}
     if "max_episode_steps" in changes:
         env_changes["max_episode_steps"] = changes.pop("max_episode_steps")
     for key, value in {**changes, **env_changes}.items():
@@ -228,7 +228,8 @@ def with_overrides(config: ExperimentConfig, **overrides: int | None) -> Experim
     if unknown:
         raise ConfigError(f"unknown override(s): {', '.join(sorted(unknown))}")
     env = dataclasses.replace(config.env, **env_changes) if env_changes else config.env
-    return dataclasses.replace(config, env=env, **changes)
+    fields: dict[str, Any] = {"env": env, **changes}
+    return dataclasses.replace(config, **fields)
 
 
 def to_dict(config: ExperimentConfig) -> dict[str, Any]:

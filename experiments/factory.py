@@ -71,6 +71,8 @@ def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env, s
     exploration = make_exploration(config, strategy)
     try:
         if strategy.agent == "grid":
+            if strategy.resolution is None:
+                raise ValueError('a grid strategy needs "resolution"')
             return GridAgent(
                 env.observation_space,
                 env.action_space,
@@ -175,5 +177,6 @@ def maze_geometry(env: gym.Env) -> tuple[Any, np.ndarray]:
     unwrapped = env.unwrapped
     layout = getattr(unwrapped, "layout", None)
     if layout is None:
-        layout = load_layout(unwrapped.spec.kwargs.get("maze", "paper"))
+        kwargs = unwrapped.spec.kwargs if unwrapped.spec is not None else {}
+        layout = load_layout(kwargs.get("maze", "paper"))
     return layout, DIRECTIONS

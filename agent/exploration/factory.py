@@ -35,8 +35,8 @@ STRATEGY_NAMES: tuple[str, ...] = (
 
 
 def _accepted(cls: type) -> set[str]:
-    params = inspect.signature(cls.__init__).parameters
-    return {name for name in params if name not in ("self", "base")}
+    params = inspect.signature(cls).parameters
+    return {name for name in params if name != "base"}
 
 
 def make_exploration(name: str, **params: Any) -> Exploration:
