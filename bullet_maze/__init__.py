@@ -15,7 +15,7 @@ from bullet_maze.env import BulletMazeEnv
 from bullet_maze.layout import MazeLayout, Obstacle, Wall, available_layouts, load_layout
 from bullet_maze.params import MAX_EPISODE_STEPS, METRES_PER_UNIT, PhysicsParams, TaskParams
 from bullet_maze.planning import PhysicalLimit, shortest_path
-from bullet_maze.robots import HolonomicRobot, HuskyRobot, Robot
+from bullet_maze.robots import Robot, RobotSpec, available_robots, load_robot_spec
 
 ENTRY_POINT = "bullet_maze.env:BulletMazeEnv"
 
@@ -43,16 +43,17 @@ __all__ = [
     "METRES_PER_UNIT",
     "Action",
     "BulletMazeEnv",
-    "HolonomicRobot",
-    "HuskyRobot",
     "MazeLayout",
     "Obstacle",
     "PhysicalLimit",
     "PhysicsParams",
     "Robot",
+    "RobotSpec",
     "TaskParams",
     "Wall",
     "available_layouts",
+    "available_robots",
     "load_layout",
+    "load_robot_spec",
     "shortest_path",
 ]
