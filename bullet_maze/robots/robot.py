@@ -248,8 +248,15 @@ def _wheel(
 
 
 def _wheel_radius(spec: RobotSpec, body: Body, joints: list[JointInfo]) -> float:
+    """The robot file's, else the wheels' collision cylinders' (or spheres') in the URDF, else
+    half the height of their collision boxes (which include pybullet's margin)."""
     if spec.wheel_radius is not None:
         return spec.wheel_radius * body.scale
+    model = body.model
+    links = [model.joint(joint.name) for joint in joints]
+    radii = [model.round_links.get(link.child) for link in links if link is not None]
+    if len(radii) == len(joints) and all(r is not None for r in radii):
+        return float(np.mean([r for r in radii if r is not None])) * body.scale
     radius = float(np.mean([joint.extent[2] for joint in joints])) / 2.0
     if not radius > 0.0:
         raise ValueError(

@@ -52,6 +52,9 @@ class UrdfModel:
     joints: tuple[UrdfJoint, ...]
     text: str | None
     """The rewritten URDF to load instead of the file, or None to load the file itself."""
+    round_links: dict[str, float]
+    """Radius (metres, the file's scale) of each link whose first collision shape is a cylinder
+    or a sphere: a wheel's radius, exactly (pybullet loads cylinders as meshes)."""
 
     @property
     def has_fixed_joints(self) -> bool:
@@ -109,12 +112,19 @@ def read_urdf(path: Path) -> UrdfModel:
             )
         joints.append(joint)
     _check_numbers(root, path)
+    round_links = {}
+    for link in links:
+        shape = link.find("collision/geometry/*")
+        if shape is not None and shape.tag in ("cylinder", "sphere"):
+            with contextlib.suppress(ValueError):
+                round_links[link.get("name", "")] = float(shape.get("radius", "nan"))
     return UrdfModel(
         path=path,
         name=root.get("name", path.stem),
         links=tuple(names),
         joints=tuple(joints),
         text=_rewritten(root, path),
+        round_links={k: v for k, v in round_links.items() if math.isfinite(v) and v > 0},
     )
 
 
