@@ -221,12 +221,11 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             raise ValueError(
                 f"observation must be one of {list(OBSERVATIONS)}, got {observation!r}"
             )
-        if robot_radius is not None and (
-            isinstance(robot_radius, bool)
-            or not isinstance(robot_radius, int | float)
-            or not 0 < robot_radius < math.inf
-        ):
-            raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
+        if robot_radius is not None:
+            if isinstance(robot_radius, bool) or not isinstance(robot_radius, int | float):
+                raise TypeError(f"robot_radius must be a number, got {robot_radius!r}")
+            if not 0 < robot_radius < math.inf:
+                raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
         for name, size in (("render_width", render_width), ("render_height", render_height)):
             if isinstance(size, bool) or not isinstance(size, int):
                 raise TypeError(f"{name} must be an integer number of pixels, got {size!r}")
@@ -286,6 +285,10 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             goal_space(pose_space, self.layout.arena) if self._goal_conditioned else pose_space
         )
         self.action_space: spaces.Space[Any] = self.actions.space
+        if self._goal_conditioned:
+            self.compute_reward = self._compute_reward
+            self.compute_terminated = self._compute_terminated
+            self.compute_truncated = self._compute_truncated
 
         self._has_heading = self.robot.has_heading
         self._human = render_mode == "human"
@@ -456,9 +459,11 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         with contextlib.suppress(Exception):
             self.close()
 
-    # -- Goal-conditioned API (observation="goal") ---------------------------------------------
+    # -- Goal-conditioned API (observation="goal"): bound as compute_reward, compute_terminated
+    # and compute_truncated only then, since tools such as Stable-Baselines3 take an env with a
+    # compute_reward for a goal-conditioned one.
 
-    def compute_reward(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
+    def _compute_reward(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
         """The reward of reaching ``achieved_goal`` when ``desired_goal`` was wanted, for one
         transition or a batch (leading axes); ``info`` is the step's info dict or a batch of
         them (their ``collision`` entries). See ``bullet_maze.goals``."""
@@ -471,7 +476,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         )
         return float(reward) if reward.ndim == 0 else reward
 
-    def compute_terminated(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
+    def _compute_terminated(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
         """Whether the achieved goal lies in the desired goal's circle (one or a batch)."""
         distance = np.linalg.norm(
             np.asarray(achieved_goal, dtype=np.float64)
@@ -481,7 +486,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         done = distance <= self._goal_radius
         return bool(done) if done.ndim == 0 else done
 
-    def compute_truncated(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
+    def _compute_truncated(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
         """Never: the time limit is the registration's ``max_episode_steps``."""
         shape = np.shape(np.asarray(achieved_goal))[:-1]
         return False if shape == () else np.zeros(shape, dtype=bool)
