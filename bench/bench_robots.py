@@ -5,7 +5,8 @@ second in dynamic mode through ``gymnasium.make`` (seeded random actions in the 
 resets included), the physics steps each env step took, and raw ``stepSimulation`` of exactly
 those physics steps in the same env's world (the robot's motors keep their last targets, so the
 bodies and contacts are the same), with the ratio of the two: what the env adds to the physics
-(controller, contact checks, observation). Then the cost of a 36-ray lidar: the same env with
+(controller, contact checks, observation). Then the kinematic mode's steps per second, and the
+cost of a 36-ray lidar: the same env with
 ``observation="lidar"`` against ``observation="pose"``, in milliseconds per step.
 
 Rates are CPU time of this process (``time.process_time``); every measurement is repeated in
@@ -161,6 +162,31 @@ def speed(steps: int, rounds: int) -> None:
         case.close()
 
 
+def kinematic_speed(steps: int, rounds: int) -> None:
+    print("\n## Kinematic mode, per robot and action set (env steps/s)\n")
+    print("| robot | actions | env steps/s |")
+    print("| --- | --- | --- |")
+    runners = {}
+    for robot, actions in CASES:
+        env = gym.make("BulletMaze-v0", robot=robot, actions=actions)
+        env.action_space.seed(0)
+        sequence = [env.action_space.sample() for _ in range(steps)]
+
+        def run(env: gym.Env = env, sequence: list = sequence) -> float:
+            env.reset(seed=0)
+            start = CLOCK()
+            for action in sequence:
+                _, _, terminated, truncated, _ = env.step(action)
+                if terminated or truncated:
+                    env.reset()
+            return len(sequence) / (CLOCK() - start)
+
+        runners[f"{robot} | {actions}"] = run
+    rates = interleaved(runners, rounds)
+    for name, values in rates.items():
+        print(f"| {name} | {statistics.median(values):,.0f} |")
+
+
 def lidar_cost(steps: int, rounds: int) -> None:
     print("\n## Lidar of 36 rays, added time per step (observation='lidar' vs 'pose')\n")
     print("| robot, actions, mode | pose: us/step | lidar: us/step | added: ms/step |")
@@ -215,12 +241,14 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=2000, help="env steps per measurement")
     parser.add_argument("--rounds", type=int, default=7, help="interleaved rounds")
     parser.add_argument("--quick", action="store_true", help="a smoke test: few steps, 2 rounds")
-    parser.add_argument("--only", choices=["speed", "lidar"], help="one part only")
+    parser.add_argument("--only", choices=["speed", "kinematic", "lidar"], help="one part only")
     args = parser.parse_args()
     steps, rounds = (200, 2) if args.quick else (args.steps, args.rounds)
-    if args.only != "lidar":
+    if args.only in (None, "speed"):
         speed(steps, rounds)
-    if args.only != "speed":
+    if args.only in (None, "kinematic"):
+        kinematic_speed(steps * 10, rounds)
+    if args.only in (None, "lidar"):
         lidar_cost(steps, rounds)
 
 
