@@ -7,6 +7,7 @@ import dataclasses
 import itertools
 import logging
 import math
+import numbers
 import os
 import sys
 from collections.abc import Sequence
@@ -733,7 +734,7 @@ def _finite_numbers(value: Any, name: str, lengths: Sequence[int]) -> list[float
     if isinstance(value, str | bytes | dict) or not isinstance(value, Sequence | np.ndarray):
         raise ValueError(f"{name} must be a sequence of {wanted} numbers, got {value!r}")
     items = list(np.asarray(value).tolist()) if isinstance(value, np.ndarray) else list(value)
-    if any(isinstance(v, bool) or not isinstance(v, int | float) for v in items):
+    if any(isinstance(v, bool | np.bool_) or not isinstance(v, numbers.Real) for v in items):
         raise ValueError(f"{name} must be a sequence of {wanted} numbers, got {value!r}")
     if len(items) not in lengths:
         raise ValueError(f"{name} must have {wanted} numbers, got {value!r}")

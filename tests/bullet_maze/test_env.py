@@ -118,6 +118,8 @@ def test_reset_options_move_start_and_goal(make_env: Callable[..., gym.Env]) -> 
     assert info["distance_to_goal"] == pytest.approx(40.0)
     assert env.unwrapped.goal == (100.0, 140.0)
     assert env.unwrapped.optimal_steps == 5  # (40 - 15) / 5 units of step
+    obs, _ = env.reset(seed=0, options={"start": np.array([100.0, 90.0], dtype=np.float32)})
+    assert np.array_equal(obs, [100.0, 90.0])
     husky = make_env(maze="open", robot="husky")
     obs, _ = husky.reset(seed=0, options={"start": (100.0, 100.0, 0.5)})
     assert np.allclose(obs, [100.0, 100.0, 0.5])
