@@ -10,12 +10,14 @@ from __future__ import annotations
 
 from gymnasium.envs.registration import register, registry
 
-from bullet_maze.actions import Action
+from bullet_maze.action_sets import ActionParams
+from bullet_maze.actions import Action, NativeAction
 from bullet_maze.env import BulletMazeEnv
 from bullet_maze.layout import MazeLayout, Obstacle, Wall, available_layouts, load_layout
 from bullet_maze.params import MAX_EPISODE_STEPS, METRES_PER_UNIT, PhysicsParams, TaskParams
 from bullet_maze.planning import PhysicalLimit, shortest_path
-from bullet_maze.robots import HolonomicRobot, HuskyRobot, Robot
+from bullet_maze.robots import Robot, RobotSpec, available_robots, load_robot_spec
+from bullet_maze.sensors import LidarParams
 
 ENTRY_POINT = "bullet_maze.env:BulletMazeEnv"
 
@@ -42,17 +44,21 @@ __all__ = [
     "MAX_EPISODE_STEPS",
     "METRES_PER_UNIT",
     "Action",
+    "ActionParams",
     "BulletMazeEnv",
-    "HolonomicRobot",
-    "HuskyRobot",
+    "LidarParams",
     "MazeLayout",
+    "NativeAction",
     "Obstacle",
     "PhysicalLimit",
     "PhysicsParams",
     "Robot",
+    "RobotSpec",
     "TaskParams",
     "Wall",
     "available_layouts",
+    "available_robots",
     "load_layout",
+    "load_robot_spec",
     "shortest_path",
 ]

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import itertools
 import logging
 import math
+import numbers
 import os
 import sys
 from collections.abc import Sequence
@@ -17,13 +19,24 @@ import numpy as np
 import pybullet as pb
 from gymnasium import spaces
 
-from bullet_maze.actions import DIRECTIONS
+from bullet_maze.action_sets import ActionParams, CompassActions, make_action_set
 from bullet_maze.geometry import clearance
+from bullet_maze.goals import goal_reward, goal_space
 from bullet_maze.layout import DEFAULT_LAYOUT, MazeLayout, load_layout
 from bullet_maze.params import MODES, PhysicsParams, TaskParams
 from bullet_maze.planning import PhysicalLimit, goal_reachable, shortest_path
 from bullet_maze.rendering import TopDownCamera
-from bullet_maze.robots import Robot, make_robot, wrap_angle
+from bullet_maze.robots import (
+    Command,
+    Move,
+    Robot,
+    RobotSpec,
+    make_robot,
+    resolve_robot,
+    wrap_angle,
+)
+from bullet_maze.robots.drives import facing
+from bullet_maze.sensors import Lidar, LidarParams
 from bullet_maze.world import CONTACT_TOLERANCE, World
 
 logger = logging.getLogger(__name__)
@@ -31,43 +44,66 @@ logger = logging.getLogger(__name__)
 NOISE_BLOCK = 1024
 """Steps of noise drawn from ``np_random`` at once (one draw per step costs more than a step)."""
 
+OBSERVATIONS = ("pose", "lidar", "goal", "goal+lidar")
+"""The values of the env's ``observation`` argument."""
+
+PARAMS = (TaskParams, PhysicsParams, ActionParams, LidarParams)
+"""The dataclasses whose fields are the env's keyword parameters; each default lives there."""
+
+MAX_RENDER_SIZE = 4096
+"""Largest image side in pixels (pybullet's TinyRenderer allocates the frame at once)."""
+
 _FAST_ACTION_TYPES = frozenset((int, np.int64))
 """Action types ``step`` looks up without conversion (``bool`` is not one: it is refused)."""
 
-_TASK = TaskParams()
-_PHYSICS = PhysicsParams()
 
-
-class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
+class BulletMazeEnv(gym.Env[Any, Any]):
     """
     ## Description
 
     The robot maze of section V.A of Hwang, Li and Jiang, "Adaptive Exploration Strategies for
     Reinforcement Learning", simulated in headless pybullet: a walled 300 x 300 arena with grey
-    cylindrical obstacles, a green start square and a red goal circle. The robot moves in four
-    directions by steps of 5.0 units with Gaussian noise; it must reach the goal.
+    cylindrical obstacles, a green start square and a red goal circle. The robot moves by steps
+    with Gaussian noise; it must reach the goal.
 
-    Layouts are TOML files (`assets/mazes/`, see `bullet_maze.load_layout`); robots are
-    swappable (`"disc"`, `"husky"` or any URDF path).
+    Layouts are TOML files (`assets/mazes/`, see `bullet_maze.load_layout`); robots are robot
+    files (`assets/robots/`: `disc`, `husky`, `racecar`, `r2d2`, or a path to a `.toml` robot
+    file; see `docs/robots.md`) or bare URDF paths, whose wheels are detected where the file
+    makes that unambiguous.
 
     ## Action Space
 
-    `Discrete(4)`, the `bullet_maze.Action` enum:
+    Chosen with `actions=` (`bullet_maze.actions`):
 
-    | Num | Action | Move (maze units)          |
-    |-----|--------|----------------------------|
-    | 0   | UP     | (0, +step_size) + noise    |
-    | 1   | DOWN   | (0, -step_size) + noise    |
-    | 2   | LEFT   | (-step_size, 0) + noise    |
-    | 3   | RIGHT  | (+step_size, 0) + noise    |
+    * `"compass"` (default, the paper's): `Discrete(4)`, `bullet_maze.Action`:
 
-    The noise is Gaussian, mean 0 and variance `noise_variance` (0.3) on each axis, drawn from
-    the env's seeded `np_random`.
+      | Num | Action | Move (maze units)          |
+      |-----|--------|----------------------------|
+      | 0   | UP     | (0, +step_size) + noise    |
+      | 1   | DOWN   | (0, -step_size) + noise    |
+      | 2   | LEFT   | (-step_size, 0) + noise    |
+      | 3   | RIGHT  | (+step_size, 0) + noise    |
+
+      A holonomic robot is pushed along the move; a differential robot turns in place to face
+      the target (or away from it, whichever needs the smaller turn) and drives there. A car
+      (ackermann drive) cannot turn in place: compass actions are refused for it.
+    * `"native"`: `Discrete(4)`, `bullet_maze.NativeAction` FORWARD, BACKWARD, TURN_LEFT,
+      TURN_RIGHT at the drive's full speed or turn rate for `control_period` seconds (a car
+      turns by driving ahead at full lock); a holonomic robot's native actions are the compass
+      ones.
+    * `"continuous"`: `Box(-1, 1, (2,), float32)`: (vx, vy) times `step_size` per step for a
+      holonomic robot; (speed, turn rate) for a differential one and (speed, steering) for a
+      car, as fractions of the drive's top values, held for `control_period` seconds.
+
+    Noise, the same in every set: two Gaussians per step, mean 0 and variance `noise_variance`
+    (0.3) in maze units squared, drawn from the env's seeded `np_random`: on x and y of a
+    displacement, or on the distance a wheeled robot's base travels and the arc the rim of its
+    footprint travels.
 
     ## Observation Space
 
-    `Box(float64)` of the robot's pose in maze units (x to the right, y up, origin at the arena's
-    lower-left corner):
+    Chosen with `observation=`. `"pose"` (default): `Box(float64)` of the robot's pose in maze
+    units (x to the right, y up, origin at the arena's lower-left corner):
 
     | Num | Observation | Min  | Max          |
     |-----|-------------|------|--------------|
@@ -75,8 +111,14 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
     | 1   | y           | 0    | arena height |
     | 2   | heading     | -pi  | pi           |
 
-    The heading (radians from +x) is present only for robots that have one (the husky); the
-    disc and user URDFs observe `(x, y)`.
+    The heading (radians from +x, the robot's forward direction) is there for every robot with
+    a drive that has one (differential, ackermann; bare URDFs with detected wheels included);
+    holonomic robots (the disc) observe `(x, y)`. `"lidar"` appends `lidar_rays` ranges in
+    `[0, lidar_range]` (`bullet_maze.sensors`), evenly spaced counter-clockwise from the
+    heading (from +x without one). `"goal"` and `"goal+lidar"` give the goal-conditioned `Dict`
+    of Gymnasium-Robotics' mazes: `observation` (the `Box` above), `achieved_goal` (x, y) and
+    `desired_goal` (the goal centre), with a vectorised `compute_reward(achieved_goal,
+    desired_goal, info)` for Stable-Baselines3's `HerReplayBuffer`.
 
     ## Rewards
 
@@ -91,19 +133,23 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
     ## Episode End
 
     1. Termination: the robot's centre is within the goal radius of the goal centre.
-    2. Truncation: 5,000 steps (section V.A), set by the registration's `max_episode_steps`.
+    2. Truncation: 5,000 steps (section V.A), set by the registration's `max_episode_steps`
+       (`gymnasium.make(..., max_episode_steps=N)` changes it; the env does not take it).
 
     A collision never ends the episode.
 
     ## Modes
 
-    * `"kinematic"` (default), the paper's exact step: the straight move from the current to the
-      proposed position is swept with the robot's footprint disc against the walls and obstacles
-      with pybullet distance queries; if it touches anything the robot stays put.
-    * `"dynamic"`: the move is a velocity command run through `substeps` physics steps with mass,
-      friction and contacts (the husky turns in place, then drives, through its wheels). A step
-      that touches a solid is undone if `revert_on_collision` (default, as the paper), otherwise
-      physics resolves the contact. The realised move is close to, not exactly, the commanded one.
+    * `"kinematic"` (default), the paper's exact step: the robot follows its drive's exact
+      kinematic model (a straight move; the unicycle; the bicycle model), swept with its
+      footprint disc against the walls and obstacles with pybullet distance queries; if it
+      touches anything the robot stays put.
+    * `"dynamic"`: physics, through the robot's own actuators (the base velocity of a
+      holonomic body; wheel velocities; rear-wheel speed and steering angles), for `substeps`
+      physics steps (holonomic), the turn-and-drive of a compass step, or `control_period`
+      seconds. A step that touches a solid is undone if `revert_on_collision` (default, as the
+      paper), otherwise physics resolves the contact. The realised move is close to, not
+      exactly, the commanded one.
 
     ## Arguments
 
@@ -112,29 +158,41 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
     import bullet_maze  # registers the ids
 
     env = gym.make("BulletMaze-v0", maze="paper", robot="disc", mode="kinematic")
+    env = gym.make("BulletMaze-v0", robot="racecar", actions="native", observation="lidar")
+    env = gym.make("BulletMaze-v0", step_size=2.5, substeps=8)  # any parameter below
     ```
 
     * `maze`: a layout name (`paper`, `paper_narrow`, `open`, `corridors`), a TOML path or a
       `MazeLayout`.
-    * `robot`: `"disc"`, `"husky"` or a URDF path; `robot_radius` rescales it to that
-      footprint radius (default: the layout's robot radius; a user URDF keeps its own size).
+    * `robot`: a robot name (`bullet_maze.available_robots()`), a `.toml` robot file, a `.urdf`
+      path or a `bullet_maze.RobotSpec`; `robot_radius` rescales it to that footprint radius
+      (default: the robot file's, usually the layout's robot radius; a bare URDF keeps its own
+      size).
     * `mode`: `"kinematic"` or `"dynamic"`; `render_mode`: `None`, `"rgb_array"` (a top-down
       TinyRenderer image, no display needed) or `"human"` (the pybullet GUI).
-    * `step_size`, `noise_variance`, `goal_reward`, `collision_reward`, `step_reward`: the task,
-      defaults from section V.A (`bullet_maze.params.TaskParams`).
-    * `time_step`, `substeps`, `solver_iterations`, `revert_on_collision`,
-      `max_turn_substeps`, `max_drive_substeps`: dynamic mode
-      (`bullet_maze.params.PhysicsParams`).
-    * `render_width`, `render_height`: image size in pixels.
+    * `actions`: `"compass"`, `"native"` or `"continuous"`; `observation`: `"pose"`, `"lidar"`,
+      `"goal"` or `"goal+lidar"`.
+    * `render_width`, `render_height`: image size in pixels (at most 4,096).
+    * Parameters, each a keyword whose default lives in one dataclass (unknown keywords are a
+      `TypeError`; a bool is not a number):
+      * `bullet_maze.TaskParams` (section V.A): `step_size`, `noise_variance`, `goal_reward`,
+        `collision_reward`, `step_reward`;
+      * `bullet_maze.PhysicsParams` (dynamic mode): `time_step`, `substeps`,
+        `solver_iterations`, `revert_on_collision`, `max_turn_substeps`,
+        `max_drive_substeps`;
+      * `bullet_maze.ActionParams`: `control_period`;
+      * `bullet_maze.LidarParams`: `lidar_rays`, `lidar_range` (a robot file may set its own
+        defaults).
 
     `reset(seed=..., options={"start": (x, y) or (x, y, heading), "goal": (x, y)})` moves the
     start and the goal for that episode (validated). `info` has `collision`,
     `distance_to_goal` and `is_success`. `env.unwrapped.optimal_steps` is the least number of
-    steps that can reach the goal (see `bullet_maze.shortest_path`).
+    compass steps that can reach the goal (see `bullet_maze.shortest_path`).
 
     ## Version History
 
-    * v0: initial version.
+    * v0: initial version; robot files, drives, action sets and observations added without
+      changing the disc's compass rollouts.
     """
 
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 30}  # noqa: RUF012
@@ -142,24 +200,16 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
     def __init__(
         self,
         maze: str | Path | MazeLayout = DEFAULT_LAYOUT,
-        robot: str | Path = "disc",
+        robot: str | Path | RobotSpec = "disc",
         mode: str = "kinematic",
         render_mode: str | None = None,
         *,
-        step_size: float = _TASK.step_size,
-        noise_variance: float = _TASK.noise_variance,
-        goal_reward: float = _TASK.goal_reward,
-        collision_reward: float = _TASK.collision_reward,
-        step_reward: float = _TASK.step_reward,
-        time_step: float = _PHYSICS.time_step,
-        substeps: int = _PHYSICS.substeps,
-        solver_iterations: int = _PHYSICS.solver_iterations,
-        revert_on_collision: bool = _PHYSICS.revert_on_collision,
-        max_turn_substeps: int = _PHYSICS.max_turn_substeps,
-        max_drive_substeps: int = _PHYSICS.max_drive_substeps,
+        actions: str = "compass",
+        observation: str = "pose",
         robot_radius: float | None = None,
         render_width: int = 256,
         render_height: int = 256,
+        **params: Any,
     ) -> None:
         if mode not in MODES:
             raise ValueError(f"mode must be one of {list(MODES)}, got {mode!r}")
@@ -168,21 +218,23 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
                 f"render_mode must be None or one of "
                 f"{self.metadata['render_modes']}, got {render_mode!r}"
             )
-        if robot_radius is not None and not (
-            isinstance(robot_radius, int | float) and 0 < robot_radius < math.inf
-        ):
-            raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
-        self.task = TaskParams(
-            step_size, noise_variance, goal_reward, collision_reward, step_reward
-        )
-        self.physics = PhysicsParams(
-            time_step,
-            substeps,
-            solver_iterations,
-            revert_on_collision,
-            max_turn_substeps,
-            max_drive_substeps,
-        )
+        if observation not in OBSERVATIONS:
+            raise ValueError(
+                f"observation must be one of {list(OBSERVATIONS)}, got {observation!r}"
+            )
+        if robot_radius is not None:
+            if isinstance(robot_radius, bool) or not isinstance(robot_radius, int | float):
+                raise TypeError(f"robot_radius must be a number, got {robot_radius!r}")
+            if not 0 < robot_radius < math.inf:
+                raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
+        for name, size in (("render_width", render_width), ("render_height", render_height)):
+            if isinstance(size, bool) or not isinstance(size, int):
+                raise TypeError(f"{name} must be an integer number of pixels, got {size!r}")
+            if not 0 < size <= MAX_RENDER_SIZE:
+                raise ValueError(f"{name} must be in [1, {MAX_RENDER_SIZE}], got {size}")
+        spec = resolve_robot(robot)
+        task, physics, action_params, lidar_params = _split_params(params, spec)
+        self.task, self.physics = task, physics
         self.layout = load_layout(maze)
         self.mode = mode
         self._kinematic = mode == "kinematic"
@@ -191,10 +243,20 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         self._client = -1
         self._client = self._connect(render_mode)
         try:
-            self.robot: Robot = self._make_robot(robot, robot_radius)
+            self.robot: Robot = make_robot(
+                spec, self._client, robot_radius, self.layout.robot_radius, not self._kinematic
+            )
+            self.actions = make_action_set(
+                actions, self.robot, task.step_size, action_params.control_period
+            )
             if not math.isclose(self.robot.radius, self.layout.robot_radius, rel_tol=1e-6):
                 self.layout.validate(robot_radius=self.robot.radius)
             self.world = World(self._client, self.layout, self.robot.radius)
+            self.lidar = (
+                Lidar(self._client, lidar_params, self.robot.radius)
+                if observation.endswith("lidar")
+                else None
+            )
             self.physics = self._enough_substeps(self.physics)
             pb.setGravity(0.0, 0.0, -9.81, physicsClientId=self._client)
             pb.setPhysicsEngineParameter(
@@ -214,16 +276,32 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         if self.robot.has_heading:
             low.append(-math.pi)
             high.append(math.pi)
-        self.observation_space = spaces.Box(np.array(low), np.array(high), dtype=np.float64)
-        self.action_space = spaces.Discrete(len(DIRECTIONS))
+        if self.lidar is not None:
+            low += [0.0] * self.lidar.rays
+            high += [self.lidar.range] * self.lidar.rays
+        pose_space = spaces.Box(np.array(low), np.array(high), dtype=np.float64)
+        self.observation_mode = observation
+        self._goal_conditioned = observation.startswith("goal")
+        self.observation_space: spaces.Space[Any] = (
+            goal_space(pose_space, self.layout.arena) if self._goal_conditioned else pose_space
+        )
+        self.action_space: spaces.Space[Any] = self.actions.space
+        if self._goal_conditioned:
+            self.compute_reward = self._compute_reward
+            self.compute_terminated = self._compute_terminated
+            self.compute_truncated = self._compute_truncated
 
         self._has_heading = self.robot.has_heading
         self._human = render_mode == "human"
         self._arena = self.layout.arena
-        self._moves: dict[int | np.integer, tuple[float, float]] = {
-            action: (float(mx), float(my))
-            for action, (mx, my) in enumerate(DIRECTIONS * self.task.step_size)
-        }
+        # The compass set's moves in a dict that takes int and np.int64 alike (the hot path);
+        # any other action set goes through its ``check`` and ``command``.
+        self._compass = isinstance(self.actions, CompassActions)
+        self._holonomic = self.robot.drive.kind == "holonomic"
+        self._moves: dict[int | np.integer, tuple[float, float]] = (
+            dict(enumerate(self.actions.moves)) if isinstance(self.actions, CompassActions) else {}
+        )
+        self._plain = self._compass and self.lidar is None and not self._goal_conditioned
         self._goal_reward = self.task.goal_reward
         self._collision_reward = self.task.collision_reward
         self._step_reward = self.task.step_reward
@@ -259,7 +337,7 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
     def _enough_substeps(self, physics: PhysicsParams) -> PhysicsParams:
         """At least as many substeps as keep every substep's move within the robot's radius
         (a step's length plus four standard deviations of its noise)."""
-        if self.robot.has_heading:  # wheeled robots creep at wheel speed, whatever the step
+        if self.robot.drive.kind != "holonomic":  # wheeled robots creep at wheel speed
             return physics
         longest = self.task.step_size + 4.0 * math.sqrt(2.0) * self.task.noise_std
         needed = math.ceil(longest / self.robot.radius)
@@ -273,45 +351,42 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         )
         return dataclasses.replace(physics, substeps=needed)
 
-    def _make_robot(self, robot: str | Path, radius: float | None) -> Robot:
-        is_path = isinstance(robot, Path) or (isinstance(robot, str) and robot.endswith(".urdf"))
-        if not isinstance(robot, str | Path):
-            raise TypeError(
-                f"robot must be 'disc', 'husky' or a URDF path, got {type(robot).__name__}"
-            )
-        if radius is None and not is_path:
-            radius = self.layout.robot_radius
-        return make_robot(robot, self._client, radius)
-
     # -- Gymnasium API -----------------------------------------------------------------------
 
-    def step(
-        self, action: int | np.integer
-    ) -> tuple[np.ndarray, SupportsFloat, bool, bool, dict[str, Any]]:
+    def step(self, action: Any) -> tuple[Any, SupportsFloat, bool, bool, dict[str, Any]]:
         if self._client < 0:
             raise RuntimeError("step() called on a closed BulletMazeEnv")
-        # The hot path takes a Python or numpy int in range straight from the table of moves.
-        move = self._moves.get(action) if type(action) in _FAST_ACTION_TYPES else None
-        if move is None:
-            move = self._moves[self._check_action(action)]
         i = self._noise_index
         noise = self._noise
         if i >= len(noise):
             self._draw_noise()
             i, noise = 0, self._noise
-        self._noise_index = i + 2
-        dx = move[0] + noise[i]
-        dy = move[1] + noise[i + 1]
-        if self._kinematic:
-            x0, y0 = self._x, self._y
-            collided = self.world.sweep_collides(x0, y0, x0 + dx, y0 + dy)
-            if not collided:
-                self._x, self._y = x0 + dx, y0 + dy
-                if self._has_heading:
-                    self._heading = math.atan2(dy, dx)
-                self._body_in_sync = False
+        if self._compass:
+            # The hot path takes a Python or numpy int in range straight from the table.
+            move = self._moves.get(action) if type(action) in _FAST_ACTION_TYPES else None
+            if move is None:
+                move = self._moves[self.actions.check(action)]
+            self._noise_index = i + 2
+            dx = move[0] + noise[i]
+            dy = move[1] + noise[i + 1]
+            if not self._kinematic:
+                collided = self._dynamic_step(Move(dx, dy))
+            else:
+                x0, y0 = self._x, self._y
+                collided = self.world.sweep_collides(x0, y0, x0 + dx, y0 + dy)
+                if not collided:
+                    self._x, self._y = x0 + dx, y0 + dy
+                    if self._has_heading:
+                        self._heading = facing(self._heading, dx, dy)
+                    self._body_in_sync = False
         else:
-            collided = self._dynamic_step(dx, dy)
+            checked = self.actions.check(action)
+            self._noise_index = i + 2
+            command = self.actions.command(checked, noise[i], noise[i + 1])
+            if self._kinematic:
+                collided = self._kinematic_step(command)
+            else:
+                collided = self._dynamic_step(command)
 
         x, y = self._x, self._y
         gx, gy = self._goal
@@ -327,13 +402,15 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             self._sync_body()
             self.world.park_probe()
         info = {"collision": collided, "distance_to_goal": distance, "is_success": success}
+        if not self._plain:
+            return self._observation(), reward, success, False, info
         if self._has_heading:
             return np.array((x, y, self._heading)), reward, success, False, info
         return np.array((x, y)), reward, success, False, info
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
-    ) -> tuple[np.ndarray, dict[str, Any]]:
+    ) -> tuple[Any, dict[str, Any]]:
         super().reset(seed=seed)
         if self._client < 0:
             raise RuntimeError("reset() called on a closed BulletMazeEnv")
@@ -383,6 +460,38 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         with contextlib.suppress(Exception):
             self.close()
 
+    # -- Goal-conditioned API (observation="goal"): bound as compute_reward, compute_terminated
+    # and compute_truncated only then, since tools such as Stable-Baselines3 take an env with a
+    # compute_reward for a goal-conditioned one.
+
+    def _compute_reward(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
+        """The reward of reaching ``achieved_goal`` when ``desired_goal`` was wanted, for one
+        transition or a batch (leading axes); ``info`` is the step's info dict or a batch of
+        them (their ``collision`` entries). See ``bullet_maze.goals``."""
+        reward = goal_reward(
+            achieved_goal,
+            desired_goal,
+            info,
+            self._goal_radius,
+            (self._goal_reward, self._collision_reward, self._step_reward),
+        )
+        return float(reward) if reward.ndim == 0 else reward
+
+    def _compute_terminated(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
+        """Whether the achieved goal lies in the desired goal's circle (one or a batch)."""
+        distance = np.linalg.norm(
+            np.asarray(achieved_goal, dtype=np.float64)
+            - np.asarray(desired_goal, dtype=np.float64),
+            axis=-1,
+        )
+        done = distance <= self._goal_radius
+        return bool(done) if done.ndim == 0 else done
+
+    def _compute_truncated(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
+        """Never: the time limit is the registration's ``max_episode_steps``."""
+        shape = np.shape(np.asarray(achieved_goal))[:-1]
+        return False if shape == () else np.zeros(shape, dtype=bool)
+
     # -- The physical limit ----------------------------------------------------------------
 
     @property
@@ -398,8 +507,8 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
 
     @property
     def optimal_steps(self) -> int:
-        """Least number of steps of ``step_size`` from start to goal: the L1 geodesic divided
-        by the step, rounded up (see ``bullet_maze.shortest_path``)."""
+        """Least number of compass steps of ``step_size`` from start to goal: the L1 geodesic
+        divided by the step, rounded up (see ``bullet_maze.shortest_path``)."""
         return self.physical_limit.steps
 
     @property
@@ -419,33 +528,47 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
 
     # -- Internals -----------------------------------------------------------------------
 
-    def _dynamic_step(self, dx: float, dy: float) -> bool:
+    def _kinematic_step(self, command: Command) -> bool:
+        """The drive's exact model: sweep its path; stay put if it touches a solid."""
+        points, end = self.robot.kinematic_path((self._x, self._y, self._heading), command)
+        sweep = self.world.sweep_collides
+        for (x0, y0), (x1, y1) in itertools.pairwise(points):
+            if sweep(x0, y0, x1, y1):
+                return True
+        self._x, self._y = end[0], end[1]
+        if self._has_heading:
+            self._heading = end[2]
+        self._body_in_sync = False
+        return False
+
+    def _dynamic_step(self, command: Command) -> bool:
         robot, world = self.robot, self.world
         x0, y0 = self._x, self._y
-        length = math.hypot(dx, dy)
-        reach = length + robot.reach_margin
+        reach = robot.drive.reach(command)
         if world.certified_clear(x0, y0, reach):
             near = False
-        elif self._has_heading:
+        elif not self._holonomic or not isinstance(command, Move):
             near = not world.clear_within(x0, y0, reach)
         else:
             # A holonomic body moves along its command and only friction shortens the move, so
             # contacts need watching only if the commanded segment (a little longer) is not
             # proved free. Physics decides the rest: an exact sweep would cost as much as
             # watching the contacts, and most moves it would sweep end in a wall.
+            dx, dy = command
+            length = math.hypot(dx, dy)
             stretch = reach / length if length > 0.0 else 0.0
             near = not world.certified_free(x0, y0, x0 + dx * stretch, y0 + dy * stretch)
         touched = False
         if not near:
-            robot.drive(dx, dy, None)
+            robot.execute(command, None)
         elif self.physics.revert_on_collision:
             # The step is undone if it touches, so its remaining substeps need not run.
             saved = robot.snapshot()
-            if robot.drive(dx, dy, world, stop_on_touch=True):
+            if robot.execute(command, world, stop_on_touch=True):
                 robot.restore(saved)
                 return True
         else:
-            touched = robot.drive(dx, dy, world)
+            touched = robot.execute(command, world)
         if self._has_heading:
             x, y, self._heading = robot.pose()
         else:
@@ -458,34 +581,31 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
 
     def _draw_noise(self) -> None:
         """Section V.A's noise for the next ``NOISE_BLOCK`` steps, from the seeded ``np_random``
-        in one draw (x then y for each step, so the stream is the same as drawing per step)."""
+        in one draw (two values per step, so the stream is the same as drawing per step)."""
         block = self.np_random.standard_normal(2 * NOISE_BLOCK) * self._noise_std
         self._noise = block.tolist()
         self._noise_index = 0
 
-    def _observation(self) -> np.ndarray:
+    def _observation(self) -> Any:
         if self.robot.has_heading:
-            return np.array((self._x, self._y, self._heading))
-        return np.array((self._x, self._y))
+            pose = np.array((self._x, self._y, self._heading))
+        else:
+            pose = np.array((self._x, self._y))
+        if self.lidar is not None:
+            heading = self._heading if self._has_heading else 0.0
+            pose = np.concatenate((pose, self.lidar.read(self._x, self._y, heading)))
+        if not self._goal_conditioned:
+            return pose
+        return {
+            "observation": pose,
+            "achieved_goal": np.array((self._x, self._y)),
+            "desired_goal": np.array(self._goal),
+        }
 
     def _sync_body(self) -> None:
         if not self._body_in_sync:
             self.robot.place(self._x, self._y, self._heading)
             self._body_in_sync = True
-
-    def _check_action(self, action: Any) -> int:
-        if isinstance(action, np.ndarray) and action.shape == ():
-            action = action.item()
-        if isinstance(action, bool) or not isinstance(action, int | np.integer):
-            raise TypeError(
-                f"action must be an integer in [0, {len(DIRECTIONS)}) "
-                f"(bullet_maze.Action), got {action!r}"
-            )
-        if not 0 <= action < len(DIRECTIONS):
-            raise ValueError(
-                f"action {action} is not in [0, {len(DIRECTIONS)}) (UP, DOWN, LEFT, RIGHT)"
-            )
-        return int(action)
 
     def _parse_options(
         self, options: dict[str, Any] | None
@@ -562,6 +682,45 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
             )
 
 
+def _split_params(
+    params: dict[str, Any], spec: RobotSpec
+) -> tuple[TaskParams, PhysicsParams, ActionParams, LidarParams]:
+    """The env's keyword parameters as the dataclasses that hold their defaults: unknown names
+    and booleans given for numbers are refused; the robot file's lidar defaults fill in."""
+    if "max_episode_steps" in params:
+        raise TypeError(
+            f"max_episode_steps={params['max_episode_steps']!r} is not an env argument: the "
+            f"time limit is set by gymnasium.make(..., max_episode_steps=N) with N > 0"
+        )
+    fields = {f.name: (cls, f) for cls in PARAMS for f in dataclasses.fields(cls)}
+    unknown = sorted(set(params) - set(fields))
+    if unknown:
+        raise TypeError(
+            f"BulletMazeEnv got unknown keyword argument(s) {unknown}; its parameters are "
+            f"{sorted(fields)} (and maze, robot, mode, render_mode, actions, observation, "
+            f"robot_radius, render_width, render_height)"
+        )
+    for name, value in params.items():
+        default = getattr(fields[name][0](), name)
+        if isinstance(value, bool) != isinstance(default, bool):
+            kind = "a bool" if isinstance(default, bool) else "a number"
+            raise TypeError(f"{name} must be {kind}, got {value!r}")
+    if spec.lidar_rays is not None:
+        params = {"lidar_rays": spec.lidar_rays, **params}
+    if spec.lidar_range is not None:
+        params = {"lidar_range": spec.lidar_range, **params}
+    built = []
+    for cls in PARAMS:
+        own = {f.name: params[f.name] for f in dataclasses.fields(cls) if f.name in params}
+        built.append(cls(**own))
+    task, physics, action_params, lidar_params = built
+    assert isinstance(task, TaskParams)
+    assert isinstance(physics, PhysicsParams)
+    assert isinstance(action_params, ActionParams)
+    assert isinstance(lidar_params, LidarParams)
+    return task, physics, action_params, lidar_params
+
+
 def _display_available() -> bool:
     """Whether a GUI can open: always assumed off Linux, else an X11 or Wayland display."""
     if not sys.platform.startswith("linux"):
@@ -570,16 +729,16 @@ def _display_available() -> bool:
 
 
 def _finite_numbers(value: Any, name: str, lengths: Sequence[int]) -> list[float]:
-    try:
-        values = [float(v) for v in value]
-    except (TypeError, ValueError) as err:
-        raise ValueError(
-            f"{name} must be a sequence of {' or '.join(map(str, lengths))} numbers, got {value!r}"
-        ) from err
-    if len(values) not in lengths:
-        raise ValueError(
-            f"{name} must have {' or '.join(map(str, lengths))} numbers, got {value!r}"
-        )
+    """A sequence of real numbers (not strings, not booleans) of one of ``lengths``."""
+    wanted = " or ".join(map(str, lengths))
+    if isinstance(value, str | bytes | dict) or not isinstance(value, Sequence | np.ndarray):
+        raise ValueError(f"{name} must be a sequence of {wanted} numbers, got {value!r}")
+    items = list(np.asarray(value).tolist()) if isinstance(value, np.ndarray) else list(value)
+    if any(isinstance(v, bool | np.bool_) or not isinstance(v, numbers.Real) for v in items):
+        raise ValueError(f"{name} must be a sequence of {wanted} numbers, got {value!r}")
+    if len(items) not in lengths:
+        raise ValueError(f"{name} must have {wanted} numbers, got {value!r}")
+    values = [float(v) for v in items]
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"{name} must be finite, got {value!r}")
     return values

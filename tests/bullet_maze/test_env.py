@@ -118,6 +118,8 @@ def test_reset_options_move_start_and_goal(make_env: Callable[..., gym.Env]) -> 
     assert info["distance_to_goal"] == pytest.approx(40.0)
     assert env.unwrapped.goal == (100.0, 140.0)
     assert env.unwrapped.optimal_steps == 5  # (40 - 15) / 5 units of step
+    obs, _ = env.reset(seed=0, options={"start": np.array([100.0, 90.0], dtype=np.float32)})
+    assert np.array_equal(obs, [100.0, 90.0])
     husky = make_env(maze="open", robot="husky")
     obs, _ = husky.reset(seed=0, options={"start": (100.0, 100.0, 0.5)})
     assert np.allclose(obs, [100.0, 100.0, 0.5])
@@ -142,6 +144,11 @@ def test_reset_options_move_start_and_goal(make_env: Callable[..., gym.Env]) -> 
         ({"start": (1.0, 2.0, 3.0, 4.0)}, r"options\['start'\] must have 2 or 3 numbers"),
         ({"start": "here"}, r"options\['start'\] must be a sequence"),
         ({"speed": 3}, r"unknown reset option\(s\) \['speed'\]"),
+        ({"start": "99"}, r"options\['start'\] must be a sequence of 2 or 3 numbers"),
+        ({"start": b"99"}, r"options\['start'\] must be a sequence"),
+        ({"start": [True, 50.0]}, r"options\['start'\] must be a sequence"),
+        ({"goal": ["150", "260"]}, r"options\['goal'\] must be a sequence of 2 numbers"),
+        ({"goal": {"x": 1, "y": 2}}, r"options\['goal'\] must be a sequence"),
     ],
 )
 def test_bad_reset_options(
@@ -246,6 +253,19 @@ def test_valid_action_types(make_env: Callable[..., gym.Env]) -> None:
         ({"substeps": 0}, ValueError, r"substeps must be a positive integer"),
         ({"robot_radius": 0.0}, ValueError, r"robot_radius must be a positive number"),
         ({"robot_radius": 45.0}, ValueError, r"'start\.position'.*radius 45"),
+        # Issue 12: a bool is not a number, unknown keywords are errors, the time limit is
+        # gymnasium.make's.
+        ({"robot_radius": True}, TypeError, r"robot_radius must be a number, got True"),
+        ({"step_size": True}, TypeError, r"step_size must be a number, got True"),
+        ({"substeps": True}, TypeError, r"substeps must be a number, got True"),
+        ({"control_period": False}, TypeError, r"control_period must be a number"),
+        ({"revert_on_collision": 1}, TypeError, r"revert_on_collision must be a bool, got 1"),
+        ({"render_width": True}, TypeError, r"render_width must be an integer"),
+        ({"render_height": 100_000}, ValueError, r"render_height must be in \[1, 4096\]"),
+        ({"speed": 3}, TypeError, r"unknown keyword argument\(s\) \['speed'\].*'step_size'"),
+        ({"max_episode_steps": -1}, TypeError, r"max_episode_steps=-1 is not an env argument"),
+        ({"actions": "joystick"}, ValueError, r"actions must be one of"),
+        ({"control_period": 0.0}, ValueError, r"control_period must be in \(0, 10\]"),
     ],
 )
 def test_bad_constructor_arguments(
@@ -255,6 +275,16 @@ def test_bad_constructor_arguments(
 ) -> None:
     with pytest.raises(error, match=message):
         BulletMazeEnv(**kwargs)
+
+
+def test_parameters_pass_through_gymnasium_make(make_env: Callable[..., gym.Env]) -> None:
+    env = make_env(step_size=2.5, substeps=8, noise_variance=0.0)
+    assert env.unwrapped.task.step_size == 2.5
+    assert env.unwrapped.physics.substeps == 8
+    obs, _ = env.reset(seed=0)
+    assert np.array_equal(env.step(Action.UP)[0], obs + np.array([0.0, 2.5]))
+    # Each parameter's default lives in its dataclass, not in the env's signature.
+    assert make_env().unwrapped.task == bullet_maze.TaskParams()
 
 
 def test_close_disconnects_and_twice_is_harmless() -> None:

@@ -1,4 +1,4 @@
-"""Swappable robots: the disc, the husky through its wheels, and a user's URDF."""
+"""Swappable robots: the disc, the husky through its wheels, and a user's URDF pushed as a body."""
 
 from __future__ import annotations
 
@@ -50,14 +50,16 @@ def test_husky_is_scaled_to_the_layouts_robot_radius(make_env: Callable[..., gym
     assert 0.5 < robot.scale < 1.0  # the real husky's footprint radius is about 0.57 m
 
 
-def test_husky_kinematic_step_faces_the_move(make_env: Callable[..., gym.Env]) -> None:
+def test_husky_kinematic_step_faces_the_move_or_backs_up(
+    make_env: Callable[..., gym.Env],
+) -> None:
     env = make_env(maze="open", robot="husky", noise_variance=0.0)
     obs, _ = env.reset(seed=0)
     assert obs[2] == pytest.approx(math.pi / 2)
-    obs, *_ = env.step(Action.RIGHT)
+    obs, *_ = env.step(Action.RIGHT)  # a quarter turn to face the move, then drive
     assert np.allclose(obs, [155.0, 30.0, 0.0])
-    obs, *_ = env.step(Action.LEFT)
-    assert np.allclose(obs, [150.0, 30.0, math.pi]) or np.allclose(obs, [150.0, 30.0, -math.pi])
+    obs, *_ = env.step(Action.LEFT)  # the move lies behind: it backs up, keeping its heading
+    assert np.allclose(obs, [150.0, 30.0, 0.0])
 
 
 def test_husky_dynamic_step_turns_then_drives(make_env: Callable[..., gym.Env]) -> None:
@@ -89,9 +91,9 @@ def test_husky_dynamic_steps_end_at_their_targets(make_env: Callable[..., gym.En
         errors.append(np.hypot(*(new[:2] - obs[:2] - 5.0 * DIRECTIONS[action])))
         lengths.append(np.hypot(*(new[:2] - obs[:2])))
         obs = new
-    assert np.mean(lengths) == pytest.approx(5.0, abs=0.05)
-    assert np.mean(errors) < 0.1
-    assert max(errors) < 1.0  # the drive stops re-aiming within AIM_RADIUS of the target
+    assert np.mean(lengths) == pytest.approx(5.0, abs=0.1)
+    assert np.mean(errors) < 0.2
+    assert max(errors) < 0.5
 
 
 def test_husky_dynamic_collision_reverts(make_env: Callable[..., gym.Env]) -> None:

@@ -1,0 +1,256 @@
+"""Dynamic-mode speed of every robot and action set, beside raw pybullet, and the lidar's cost.
+
+For each robot of the zoo and each action set it supports, one run prints the env's steps per
+second in dynamic mode through ``gymnasium.make`` (seeded random actions in the default maze,
+resets included), the physics steps each env step took, and raw ``stepSimulation`` of exactly
+those physics steps in the same env's world (the robot's motors keep their last targets, so the
+bodies and contacts are the same), with the ratio of the two: what the env adds to the physics
+(controller, contact checks, observation). Then the kinematic mode's steps per second, and the
+cost of a 36-ray lidar: the same env with
+``observation="lidar"`` against ``observation="pose"``, in milliseconds per step.
+
+Rates are CPU time of this process (``time.process_time``); every measurement is repeated in
+rounds, interleaved (forwards, then backwards), and reported as the median over the rounds, a
+ratio or a difference as the median of those measured within each round, so that load that
+slows a whole round cancels out.
+
+Targets (issue 10): the husky's compass step at least 4x the 88 steps/s of the hand-written
+controller it replaces; native actions of the husky and the racecar at least 1,000 steps/s; a
+36-ray lidar adds at most 0.2 ms per step.
+
+Run: ``python bench/bench_robots.py`` (``--quick`` for a smoke test, ``--rounds``, ``--steps``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from collections.abc import Callable
+
+import gymnasium as gym
+import numpy as np
+import pybullet as pb
+
+import bullet_maze  # noqa: F401  (registers the ids)
+
+CLOCK = time.process_time
+
+CASES = (
+    ("disc", "compass"),
+    ("disc", "continuous"),
+    ("husky", "compass"),
+    ("husky", "native"),
+    ("husky", "continuous"),
+    ("rover", "compass"),
+    ("rover", "native"),
+    ("rover", "continuous"),
+    ("racecar", "native"),
+    ("racecar", "continuous"),
+)
+"""(robot, action set): every action set each robot of the zoo supports."""
+
+COMPASS_STEPS = {"husky": 0.1, "rover": 0.1}
+"""Compass steps of wheeled robots run hundreds of physics steps: this share of ``--steps``."""
+
+
+class Case:
+    """One env with its seeded actions, and its raw-physics twin."""
+
+    def __init__(self, robot: str, actions: str, steps: int, observation: str = "pose") -> None:
+        self.env = gym.make(
+            "BulletMaze-v0", robot=robot, mode="dynamic", actions=actions, observation=observation
+        )
+        self.env.action_space.seed(0)
+        self.actions = [self.env.action_space.sample() for _ in range(steps)]
+        self.client = self.env.unwrapped.client_id
+        self.body = self.env.unwrapped.robot.body_id
+        self.starts: list[tuple] = []
+        self.physics_steps = self._count()
+
+    def _count(self) -> list[int]:
+        """Physics steps of each env step, and the robot's base state at its start (one
+        counting pass, not timed)."""
+        counts: list[int] = []
+        original = pb.stepSimulation
+        calls = [0]
+
+        def counting(*args: object) -> object:
+            calls[0] += 1
+            return original(*args)
+
+        pb.stepSimulation = counting
+        try:
+            self.env.reset(seed=0)
+            for action in self.actions:
+                calls[0] = 0
+                self.starts.append(
+                    (
+                        *pb.getBasePositionAndOrientation(self.body, self.client),
+                        *pb.getBaseVelocity(self.body, self.client),
+                    )
+                )
+                _, _, terminated, truncated, _ = self.env.step(action)
+                counts.append(calls[0])
+                if terminated or truncated:
+                    self.env.reset()
+        finally:
+            pb.stepSimulation = original
+        return counts
+
+    def run_env(self) -> float:
+        """Env steps per CPU second."""
+        env = self.env
+        env.reset(seed=0)
+        start = CLOCK()
+        for action in self.actions:
+            _, _, terminated, truncated, _ = env.step(action)
+            if terminated or truncated:
+                env.reset()
+        return len(self.actions) / (CLOCK() - start)
+
+    def run_raw(self) -> float:
+        """The same physics steps, bare, each env step's from the base state the env step
+        started in (so that the contacts are the same): 'env steps' per CPU second."""
+        self.env.reset(seed=0)
+        client, body, step = self.client, self.body, pb.stepSimulation
+        reset_pose, reset_velocity = pb.resetBasePositionAndOrientation, pb.resetBaseVelocity
+        start = CLOCK()
+        for count, (position, orientation, linear, angular) in zip(
+            self.physics_steps, self.starts, strict=True
+        ):
+            reset_pose(body, position, orientation, client)
+            reset_velocity(body, linear, angular, client)
+            for _ in range(count):
+                step(client)
+        return len(self.physics_steps) / (CLOCK() - start)
+
+    def close(self) -> None:
+        self.env.close()
+
+
+def interleaved(runners: dict[str, Callable[[], float]], rounds: int) -> dict[str, list[float]]:
+    """Every runner once per round, forwards in even rounds and backwards in odd ones."""
+    rates: dict[str, list[float]] = {name: [] for name in runners}
+    names = list(runners)
+    for i in range(rounds):
+        for name in names if i % 2 == 0 else names[::-1]:
+            rates[name].append(runners[name]())
+    return rates
+
+
+def speed(steps: int, rounds: int) -> None:
+    print("## Dynamic mode, per robot and action set (paper maze, random actions)\n")
+    print(
+        "| robot | actions | env steps/s | physics steps per env step | raw stepSimulation of "
+        "those steps, steps/s | env time / raw time |"
+    )
+    print("| --- | --- | --- | --- | --- | --- |")
+    for robot, actions in CASES:
+        n = max(20, int(steps * COMPASS_STEPS.get(robot, 1.0))) if actions == "compass" else steps
+        if robot == "disc":
+            n = steps
+        case = Case(robot, actions, n)
+        rates = interleaved({"env": case.run_env, "raw": case.run_raw}, rounds)
+        ratio = statistics.median(r / e for e, r in zip(rates["env"], rates["raw"], strict=True))
+        print(
+            f"| {robot} | {actions} | {statistics.median(rates['env']):,.0f} | "
+            f"{np.mean(case.physics_steps):.1f} | {statistics.median(rates['raw']):,.0f} | "
+            f"{ratio:.2f} |",
+            flush=True,
+        )
+        case.close()
+
+
+def kinematic_speed(steps: int, rounds: int) -> None:
+    print("\n## Kinematic mode, per robot and action set (env steps/s)\n")
+    print("| robot | actions | env steps/s |")
+    print("| --- | --- | --- |")
+    runners = {}
+    for robot, actions in CASES:
+        env = gym.make("BulletMaze-v0", robot=robot, actions=actions)
+        env.action_space.seed(0)
+        sequence = [env.action_space.sample() for _ in range(steps)]
+
+        def run(env: gym.Env = env, sequence: list = sequence) -> float:
+            env.reset(seed=0)
+            start = CLOCK()
+            for action in sequence:
+                _, _, terminated, truncated, _ = env.step(action)
+                if terminated or truncated:
+                    env.reset()
+            return len(sequence) / (CLOCK() - start)
+
+        runners[f"{robot} | {actions}"] = run
+    rates = interleaved(runners, rounds)
+    for name, values in rates.items():
+        print(f"| {name} | {statistics.median(values):,.0f} |")
+
+
+def lidar_cost(steps: int, rounds: int) -> None:
+    print("\n## Lidar of 36 rays, added time per step (observation='lidar' vs 'pose')\n")
+    print("| robot, actions, mode | pose: us/step | lidar: us/step | added: ms/step |")
+    print("| --- | --- | --- | --- |")
+    for robot, actions, mode in (
+        ("disc", "compass", "kinematic"),
+        ("husky", "native", "dynamic"),
+        ("racecar", "native", "dynamic"),
+    ):
+        envs = {
+            observation: gym.make(
+                "BulletMaze-v0", robot=robot, actions=actions, mode=mode, observation=observation
+            )
+            for observation in ("pose", "lidar")
+        }
+        sequence = {}
+        for name, env in envs.items():
+            env.action_space.seed(0)
+            sequence[name] = [env.action_space.sample() for _ in range(steps)]
+
+        def runner(
+            name: str, envs: dict[str, gym.Env] = envs, sequence: dict[str, list] = sequence
+        ) -> Callable[[], float]:
+            env, actions_ = envs[name], sequence[name]
+
+            def run() -> float:
+                env.reset(seed=0)
+                start = CLOCK()
+                for action in actions_:
+                    _, _, terminated, truncated, _ = env.step(action)
+                    if terminated or truncated:
+                        env.reset()
+                return (CLOCK() - start) / len(actions_) * 1e6  # us per step
+
+            return run
+
+        times = interleaved({name: runner(name) for name in envs}, rounds)
+        added = statistics.median(
+            (b - a) / 1000.0 for a, b in zip(times["pose"], times["lidar"], strict=True)
+        )
+        print(
+            f"| {robot}, {actions}, {mode} | {statistics.median(times['pose']):.1f} | "
+            f"{statistics.median(times['lidar']):.1f} | {added:.3f} |",
+            flush=True,
+        )
+        for env in envs.values():
+            env.close()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--steps", type=int, default=2000, help="env steps per measurement")
+    parser.add_argument("--rounds", type=int, default=7, help="interleaved rounds")
+    parser.add_argument("--quick", action="store_true", help="a smoke test: few steps, 2 rounds")
+    parser.add_argument("--only", choices=["speed", "kinematic", "lidar"], help="one part only")
+    args = parser.parse_args()
+    steps, rounds = (200, 2) if args.quick else (args.steps, args.rounds)
+    if args.only in (None, "speed"):
+        speed(steps, rounds)
+    if args.only in (None, "kinematic"):
+        kinematic_speed(steps * 10, rounds)
+    if args.only in (None, "lidar"):
+        lidar_cost(steps, rounds)
+
+
+if __name__ == "__main__":
+    main()

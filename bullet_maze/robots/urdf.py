@@ -1,0 +1,196 @@
+"""Reading a URDF before pybullet does: bounded, parsed, and prepared for loading.
+
+pybullet's importer fails late and badly on hostile files (a 500-link URDF gives a raw
+``pybullet.error``, a 2,000-link one can crash the process when the client closes), and it gives
+every link without inertial data 1 kg and 1 kg m^2, which makes a robot with frame-only links
+(sensor mounts, footprints) turn several times slower than its real inertia allows. So the file
+is read here first, within bounds, and rewritten only where that helps:
+
+* links without ``<inertial>`` get a near-zero mass (``FRAME_MASS``) when some other link has
+  inertial data (a URDF without any keeps pybullet's defaults: it would otherwise weigh nothing);
+* relative mesh paths become absolute, so that the rewritten text loads from anywhere.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+MAX_URDF_BYTES = 8 * 1024 * 1024
+"""Largest URDF file read (8 MiB; pybullet_data's largest robot is under 200 KiB)."""
+
+MAX_LINKS = 256
+"""Most links a robot may have (humanoids have 30-70); checked before pybullet sees the file."""
+
+FRAME_MASS = 0.01
+"""kg given to a link without inertial data (a frame, a sensor mount) when others have some."""
+
+JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic", "floating", "planar")
+"""URDF joint types."""
+
+
+@dataclass(frozen=True)
+class UrdfJoint:
+    """One ``<joint>`` as written in the file."""
+
+    name: str
+    type: str
+    parent: str
+    child: str
+
+
+@dataclass(frozen=True)
+class UrdfModel:
+    """What the env needs from a URDF file before loading it."""
+
+    path: Path
+    name: str
+    links: tuple[str, ...]
+    joints: tuple[UrdfJoint, ...]
+    text: str | None
+    """The rewritten URDF to load instead of the file, or None to load the file itself."""
+    round_links: dict[str, float]
+    """Radius (metres, the file's scale) of each link whose first collision shape is a cylinder
+    or a sphere: a wheel's radius, exactly (pybullet loads cylinders as meshes)."""
+
+    @property
+    def has_fixed_joints(self) -> bool:
+        """Whether pybullet may merge some links into their parents."""
+        return any(joint.type == "fixed" for joint in self.joints)
+
+    def joint(self, name: str) -> UrdfJoint | None:
+        """The joint called ``name``, if there is one."""
+        return next((joint for joint in self.joints if joint.name == name), None)
+
+
+def read_urdf(path: Path) -> UrdfModel:
+    """Parse and check a URDF file; a ``FileNotFoundError`` or ``ValueError`` naming the path."""
+    if not path.is_file():
+        raise FileNotFoundError(f"robot URDF not found: {path}")
+    size = path.stat().st_size
+    if size > MAX_URDF_BYTES:
+        raise ValueError(
+            f"robot URDF {path} is {size:,} bytes; at most {MAX_URDF_BYTES:,} are read"
+        )
+    try:
+        root = ET.fromstring(path.read_bytes())
+    except ET.ParseError as err:
+        raise ValueError(f"robot URDF {path} is not well-formed XML: {err}") from None
+    if root.tag != "robot":
+        raise ValueError(f"robot URDF {path}: the root element is <{root.tag}>, not <robot>")
+    links = root.findall("link")
+    if not links:
+        raise ValueError(f"robot URDF {path} has no <link>")
+    if len(links) > MAX_LINKS:
+        raise ValueError(
+            f"robot URDF {path} has {len(links)} links; at most {MAX_LINKS} are supported"
+        )
+    names = [link.get("name", "") for link in links]
+    if "" in names or len(set(names)) != len(names):
+        raise ValueError(f"robot URDF {path}: every <link> needs a unique name")
+    joints = []
+    for element in root.findall("joint"):
+        parent, child = element.find("parent"), element.find("child")
+        joint = UrdfJoint(
+            name=element.get("name", ""),
+            type=element.get("type", ""),
+            parent="" if parent is None else parent.get("link", ""),
+            child="" if child is None else child.get("link", ""),
+        )
+        if not joint.name or joint.type not in JOINT_TYPES:
+            raise ValueError(
+                f"robot URDF {path}: joint {joint.name!r} has type {joint.type!r}; "
+                f"URDF joint types are {list(JOINT_TYPES)}"
+            )
+        if joint.parent not in names or joint.child not in names:
+            raise ValueError(
+                f"robot URDF {path}: joint {joint.name!r} connects {joint.parent!r} to "
+                f"{joint.child!r}, which are not both links of the file"
+            )
+        joints.append(joint)
+    _check_numbers(root, path)
+    round_links = {}
+    for link in links:
+        shape = link.find("collision/geometry/*")
+        if shape is not None and shape.tag in ("cylinder", "sphere"):
+            with contextlib.suppress(ValueError):
+                round_links[link.get("name", "")] = float(shape.get("radius", "nan"))
+    return UrdfModel(
+        path=path,
+        name=root.get("name", path.stem),
+        links=tuple(names),
+        joints=tuple(joints),
+        text=_rewritten(root, path),
+        round_links={k: v for k, v in round_links.items() if math.isfinite(v) and v > 0},
+    )
+
+
+def _check_numbers(root: ET.Element, path: Path) -> None:
+    """Every mass, inertia, origin and size in the file is a finite number (pybullet would read
+    ``nan`` or garbage silently)."""
+    numeric = {
+        "mass": ("value",),
+        "inertia": ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"),
+        "origin": ("xyz", "rpy"),
+        "box": ("size",),
+        "cylinder": ("radius", "length"),
+        "sphere": ("radius",),
+        "mesh": ("scale",),
+        "axis": ("xyz",),
+        "limit": ("lower", "upper", "effort", "velocity"),
+    }
+    for tag, attributes in numeric.items():
+        for element in root.iter(tag):
+            for attribute in attributes:
+                text = element.get(attribute)
+                if text is None:
+                    continue
+                # Text that is no number (xacro left-overs such as husky.urdf's
+                # "$(optenv ...)") is pybullet's to judge; a number must be finite.
+                for token in text.split():
+                    try:
+                        value = float(token)
+                    except ValueError:
+                        continue
+                    if not math.isfinite(value):
+                        raise ValueError(
+                            f"robot URDF {path}: <{tag} {attribute}={text!r}> is not finite"
+                        )
+    for mass in root.iter("mass"):
+        negative = False
+        with contextlib.suppress(ValueError):
+            negative = float(mass.get("value", "0")) < 0.0
+        if negative:
+            raise ValueError(f"robot URDF {path}: a <mass> is negative ({mass.get('value')})")
+
+
+def _rewritten(root: ET.Element, path: Path) -> str | None:
+    """The URDF text to load in place of the file, or None if the file loads as it is."""
+    changed = False
+    links = root.findall("link")
+    if any(link.find("inertial") is not None for link in links):
+        for link in links:
+            if link.find("inertial") is None:
+                inertial = ET.SubElement(link, "inertial")
+                ET.SubElement(inertial, "mass", value=repr(FRAME_MASS))
+                moment = repr(FRAME_MASS * 1e-3)
+                ET.SubElement(
+                    inertial,
+                    "inertia",
+                    ixx=moment,
+                    ixy="0",
+                    ixz="0",
+                    iyy=moment,
+                    iyz="0",
+                    izz=moment,
+                )
+                changed = True
+    for mesh in root.iter("mesh"):
+        filename = mesh.get("filename", "")
+        if filename and "://" not in filename and not Path(filename).is_absolute():
+            mesh.set("filename", str(path.parent / filename))
+            changed = True
+    return ET.tostring(root, encoding="unicode") if changed else None
