@@ -46,6 +46,7 @@ import logging
 import math
 import sys
 import textwrap
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -589,6 +590,9 @@ class FastRunner:
         self.k = kernel
         self.chain = chain
         self.base = chain.base
+        self.env_seconds: float | None = None
+        """CPU seconds spent in the env's Python code (sweeps, ``env.step``) once a benchmark
+        sets this to 0.0 (``bench/bench_agent.py``); None: not measured."""
         self._export()
 
     # -- one episode ---------------------------------------------------------------------
@@ -678,7 +682,10 @@ class FastRunner:
     def _python_step(self) -> None:
         k, st, fs = self.k, self.st, self.fs
         self._commit_env()
+        start = time.process_time()
         obs, reward, terminated, truncated, info = self.env.step(int(st[k.I_ACTION]))
+        if self.env_seconds is not None:
+            self.env_seconds += time.process_time() - start
         x = obs.tolist() if type(obs) is np.ndarray else [float(v) for v in obs]
         fs[k.F_OX], fs[k.F_OY] = x
         fs[k.F_OR] = float(reward)
@@ -694,7 +701,12 @@ class FastRunner:
         move the kernel could not decide; the kernel does the rest of the step."""
         k, st, fs = self.k, self.st, self.fs
         x0, y0, x1, y1 = fs[k.F_SW_X0 : k.F_SW_Y1 + 1].tolist()
-        collided = self.world.sweep_collides(x0, y0, x1, y1)
+        if self.env_seconds is None:
+            collided = self.world.sweep_collides(x0, y0, x1, y1)
+        else:
+            start = time.process_time()
+            collided = self.world.sweep_collides(x0, y0, x1, y1)
+            self.env_seconds += time.process_time() - start
         x, y = (x0, y0) if collided else (x1, y1)
         fs[k.F_OX] = x
         fs[k.F_OY] = y
@@ -895,7 +907,7 @@ class FastRunner:
         self.bsum = np.zeros((0, 2), dtype=np.float64)
         self.free = np.zeros(0, dtype=np.int64)
         self._grow_pool((partition.n_leaves if is_tree else 0) + 16)
-        self._import_leaves(range(n_ids))
+        self._import_all()
 
         stream = agent.uniform
         self.ubuf = np.array(stream._buffer, dtype=np.float64)
@@ -1009,6 +1021,31 @@ class FastRunner:
             needed = partition.n_leaves - live
             if int(self.st[k.I_NFREE]) < needed:
                 self._grow_pool(self.nslots + needed + 16)
+        self._import_tabu()
+
+    def _import_all(self) -> None:
+        """:meth:`_import_leaves` of every id, in bulk."""
+        k, li, lf = self.k, self.li, self.lf
+        agent = self.agent
+        partition: Any = agent.partition
+        n = self.n_ids
+        self.q[:n] = agent.q
+        self.visits[:n] = agent.visits
+        if type(partition) is PartitionTree:
+            li[:n, k.L_DIM] = partition._dim
+            li[:n, k.L_LEFT] = partition._left
+            lf[:n, k.LF_THRESHOLD] = partition._threshold
+            for leaf, buf in partition._buffers.items():
+                self._import_buffer(leaf, buf)
+        base = self.strategy_base
+        if type(base) is AdaptiveEpsilon:
+            for leaf, counts in base._counts.items():
+                self.counts[leaf] = counts
+                li[leaf, k.L_COUNTS_HAS] = 1
+        if type(base) is AdaptiveEpsilon or type(base) is VDBE:
+            for leaf, eps in base._epsilon.items():
+                lf[leaf, k.LF_EPS] = eps
+                li[leaf, k.L_EPS_HAS] = 1
         self._import_tabu()
 
     def _import_buffer(self, leaf: int, buf: ErrorBuffer | None) -> None:
