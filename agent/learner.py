@@ -94,11 +94,18 @@ class SMDPAgent:
         episodes: int,
         callback: Callback | None = None,
         reset_seed: int | None = None,
+        fast: bool = True,
     ) -> list[EpisodeStats]:
         """Train for ``episodes`` episodes; the first resets with ``reset_seed``, the rest unseeded.
 
         ``callback(stats)`` runs after each episode; returning ``False`` stops learning.
+        ``fast=True`` runs each episode with the compiled loop of :mod:`agent.fast_loop` when it
+        applies (the kinematic maze env and the agents, settings and strategies it implements;
+        bit-identical results), else with :meth:`_run_episode`, the reference loop, which
+        ``fast=False`` always uses.
         """
+        if not isinstance(fast, bool):
+            raise TypeError(f"fast must be a bool, got {fast!r}")
         if not isinstance(episodes, int) or episodes < 0:
             raise ValueError(f"episodes must be an int >= 0, got {episodes!r}")
         env_actions = getattr(env.action_space, "n", None)
@@ -107,10 +114,15 @@ class SMDPAgent:
                 f"env.action_space {env.action_space!r} does not match the agent's "
                 f"{self.n_actions} actions"
             )
+        run_episode: Callable[[Any, Any], EpisodeStats] = self._run_episode
+        if fast and episodes > 0:
+            from agent.fast_loop import episode_runner
+
+            run_episode = episode_runner(self, env)
         history: list[EpisodeStats] = []
         for i in range(episodes):
             obs, _ = env.reset(seed=reset_seed if i == 0 else None)
-            stats = self._run_episode(env, obs)
+            stats = run_episode(env, obs)
             history.append(stats)
             logger.debug("%s", stats)
             if callback is not None and callback(stats) is False:

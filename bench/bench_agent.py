@@ -1,23 +1,36 @@
-"""Agent cost per environment step (choose, observe, update), measured against a trivial env.
+"""Agent cost per environment step (choose, observe, update), measured against the env alone.
 
-Runs the same trivial env twice, once with a fixed action cycle (the env's own cost) and once
-under ``TreeAgent.learn`` with a tree of 500 leaves (a balanced tree over the box, capped there
-with ``max_leaves`` so the split test still runs but the size stays put). The agent's cost is
-the difference. Times are this process's CPU time (``time.process_time``), not wall time, and
-each is the best of ``--repeats`` runs, because the machine is shared. Prints agent steps per
-second and the ratio of the two runs' times. Results go in
-docs/benchmarks.md, section "Agent".
+Two parts.
+
+1. The reference loop on a trivial env: the same trivial env twice, once with a fixed action
+   cycle (the env's own cost) and once under ``TreeAgent.learn(fast=False)`` with a tree of
+   500 leaves (a balanced tree over the box, capped there with ``max_leaves`` so the split
+   test still runs but the size stays put). The agent's cost is the difference. (The fast loop
+   runs only on our env: on this one ``learn`` falls back to the reference.)
+2. ``--fast``: the reference against the fast loop (``agent/fast_loop.py``) in the default
+   maze (kinematic, ``gymnasium.make``, cap 5,000), with the same 500-leaf trees: both paths
+   on the same seeds take the same actions, so the env's share can be taken out of each. The
+   reference's agent cost is (its learning time) - (the same actions replayed through
+   ``gymnasium.make``); the fast loop's is (its learning time) - (time in the env's Python
+   code: sweeps and ``env.step``), an upper bound, since its own kinematic steps count as
+   agent. Interleaved rounds, medians of per-round ratios.
+
+Times are this process's CPU time (``time.process_time``), because the machine is shared.
+Results go in docs/benchmarks.md, section "Agent".
 
     python bench/bench_agent.py [--steps 200000] [--leaves 500]
+    python bench/bench_agent.py --fast [--episodes 40] [--rounds 3]
 """
 
 from __future__ import annotations
 
 import argparse
+import statistics
 import time
 import tracemalloc
 from typing import Any
 
+import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
@@ -85,17 +98,125 @@ def agent_seconds(agent: Any, steps: int, horizon: int) -> tuple[float, int]:
     env = TrivialEnv(horizon)
     episodes = max(1, steps // horizon)
     t0 = time.process_time()
-    history = agent.learn(env, episodes, reset_seed=0)
+    history = agent.learn(env, episodes, reset_seed=0, fast=False)
     return time.process_time() - t0, sum(s.steps for s in history)
+
+
+class RecordActions(gym.Wrapper):
+    """Records every action (the reference loop runs through any wrapper)."""
+
+    def __init__(self, env: gym.Env) -> None:
+        super().__init__(env)
+        self.actions: list[list[int]] = []
+
+    def reset(self, **kwargs: Any) -> Any:
+        self.actions.append([])
+        return self.env.reset(**kwargs)
+
+    def step(self, action: Any) -> Any:
+        self.actions[-1].append(int(action))
+        return self.env.step(action)
+
+
+def maze_agent(strategy: str, leaves: int, env: gym.Env) -> Any:
+    """A 500-leaf agent for the maze (a balanced tree capped there, or a 60 x 60 grid)."""
+    if strategy == "grid":
+        return GridAgent(env.observation_space, env.action_space, "adaptive+tabu", 0, resolution=60)
+    config = TreeConfig(max_leaves=leaves)
+    agent = TreeAgent(env.observation_space, env.action_space, strategy, seed=0, config=config)
+    balanced_tree(agent, leaves)
+    return agent
+
+
+def fast_agent_cost(strategy: str, leaves: int, episodes: int, rounds: int) -> None:
+    """Part 2 for one case: the agent's cost per step on each path, in interleaved rounds."""
+    import bullet_maze  # noqa: F401
+    from agent import fast_loop
+
+    def make_env() -> gym.Env:
+        return gym.make("BulletMaze-v0", max_episode_steps=5000)
+
+    fast_loop.load_kernel()
+    recorder = RecordActions(make_env())
+    history = maze_agent(strategy, leaves, recorder).learn(recorder, episodes, reset_seed=1)
+    steps = sum(s.steps for s in history)
+    recorder.close()
+
+    def reference() -> float:
+        env = make_env()
+        agent = maze_agent(strategy, leaves, env)
+        t0 = time.process_time()
+        assert agent.learn(env, episodes, reset_seed=1, fast=False) == history
+        seconds = time.process_time() - t0
+        env.close()
+        return seconds
+
+    def replay() -> float:
+        env = make_env()
+        t0 = time.process_time()
+        for i, actions in enumerate(recorder.actions):
+            env.reset(seed=1 if i == 0 else None)
+            for action in actions:
+                env.step(action)
+        seconds = time.process_time() - t0
+        env.close()
+        return seconds
+
+    def fast() -> tuple[float, float]:
+        env = make_env()
+        agent = maze_agent(strategy, leaves, env)
+        runner = fast_loop.episode_runner(agent, env)
+        assert isinstance(runner, fast_loop.FastRunner)
+        runner.env_seconds = 0.0
+        out = []
+        t0 = time.process_time()
+        for i in range(episodes):
+            obs, _ = env.reset(seed=1 if i == 0 else None)
+            out.append(runner(env, obs))
+        seconds = time.process_time() - t0
+        assert out == history
+        env.close()
+        return seconds, runner.env_seconds
+
+    ratios, ref_costs, fast_costs = [], [], []
+    for i in range(rounds):
+        measured: dict[str, Any] = {}
+        order = ("reference", "replay", "fast") if i % 2 == 0 else ("fast", "replay", "reference")
+        for name in order:
+            measured[name] = {"reference": reference, "replay": replay, "fast": fast}[name]()
+        ref_cost = (measured["reference"] - measured["replay"]) / steps
+        fast_total, fast_env = measured["fast"]
+        fast_cost = (fast_total - fast_env) / steps
+        ratios.append(ref_cost / fast_cost)
+        ref_costs.append(ref_cost)
+        fast_costs.append(fast_cost)
+    label = "grid 60x60, adaptive+tabu" if strategy == "grid" else f"tree {leaves}, {strategy}"
+    print(
+        f"{label:<32} {steps:>9,d} {1 / statistics.median(ref_costs):>14,.0f} "
+        f"{1 / statistics.median(fast_costs):>14,.0f} {statistics.median(ratios):>6.2f}x "
+        f"({min(ratios):.2f}-{max(ratios):.2f})"
+    )
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--fast", action="store_true", help="part 2: reference vs fast loop")
+    parser.add_argument("--episodes", type=int, default=40, help="episodes of part 2")
+    parser.add_argument("--rounds", type=int, default=3, help="interleaved rounds of part 2")
     parser.add_argument("--steps", type=int, default=200_000)
     parser.add_argument("--leaves", type=int, default=500)
     parser.add_argument("--horizon", type=int, default=5000)
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
+    if args.fast:
+        print(
+            f"agent cost in the default maze, {args.episodes} episodes, CPU time, median of "
+            f"{args.rounds} interleaved rounds (range); agent steps/s = 1 / agent cost per step"
+        )
+        print(f"{'case':<32} {'steps':>9} {'reference':>14} {'fast (bound)':>14} {'ratio':>7}")
+        for strategy in ("adaptive+tabu", "epsilon-greedy", "vdbe", "grid"):
+            fast_agent_cost(strategy, args.leaves, args.episodes, args.rounds)
+        return
 
     env_time = min(env_only_seconds(args.steps, args.horizon) for _ in range(args.repeats))
     env_per_step = env_time / args.steps

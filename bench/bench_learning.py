@@ -1,16 +1,22 @@
 """Speed of the learning loop (env + agent) and of the parallel runner.
 
-Three measurements, each printed as a ratio against its reference:
+Four measurements, each printed as a ratio against its reference:
 
-1. steps per second of one learning run in kinematic mode (the proposed agent in the default
-   maze), against the target of 20,000 per core, and against the bare environment stepped with
-   random actions;
-2. the same small experiment with 1 and with 2 workers: the speed-up, against the target 1.8x
-   (run with nothing else busy: two workers need two free cores);
-3. resident memory of a worker over a long run, sampled every few episodes: flat or not.
+1. ``ratio``: the fast loop (``learn(fast=True)``, ``agent/fast_loop.py``) against the
+   reference loop (``learn(fast=False)``, today's ``_run_episode``) for every strategy of
+   ``experiments/paper_fig4.toml`` (tree and grid agents), default maze, kinematic: both paths
+   on the same seeds in interleaved rounds, CPU time of this process, the median of the
+   per-round ratios (quartiles), and a check that both gave the same episodes;
+2. ``speed``: steps per second of one learning run (the proposed agent in the default maze),
+   against the target of 20,000 per core, and against the bare environment stepped with random
+   actions;
+3. ``workers``: the same small experiment with 1 and with 2 workers (``--backend process`` or
+   ``ray``): the speed-up, against the target 1.8x (run with nothing else busy: two workers
+   need two free cores);
+4. ``memory``: resident memory of a worker over a long run, sampled every few episodes.
 
-    python bench/bench_learning.py                  # all three, a few minutes
-    python bench/bench_learning.py --only speed     # just (1)
+    python bench/bench_learning.py --only ratio     # (1), a few minutes
+    python bench/bench_learning.py                  # all of them
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ import argparse
 import dataclasses
 import multiprocessing
 import os
+import statistics
 import tempfile
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -27,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from experiments import factory, runner
-from experiments.backends import ProcessBackend
+from experiments.backends import ProcessBackend, make_backend
 from experiments.config import load_config, with_overrides
 from experiments.seeding import derive_seeds, run_seed
 from experiments.training import resident_memory_mb, train
@@ -62,6 +69,59 @@ def learning_speed(episodes: int, strategy: str = "adaptive+tabu") -> tuple[floa
     return training.steps_per_second, training.env_steps, training.wall_time_s
 
 
+def timed_learning(name: str, episodes: int, fast: bool, run: int = 0) -> tuple[float, list]:
+    """CPU seconds of one ``paper_fig4`` run of strategy ``name`` (``learn(fast=fast)``) and
+    its episode statistics; the env and agent are built before the clock starts."""
+    config = with_overrides(load_config("paper_fig4"), episodes=episodes)
+    seeds = derive_seeds(run_seed(config.seed, run))
+    env = factory.make_env(config.env)
+    agent = factory.make_agent(config, config.strategy(name), env, seeds.agent)
+    start = time.process_time()
+    history = agent.learn(env, episodes, reset_seed=seeds.env, fast=fast)
+    seconds = time.process_time() - start
+    env.close()
+    return seconds, history
+
+
+def fast_ratios(episodes: int, rounds: int) -> None:
+    """(1): reference / fast time of every paper_fig4 strategy, interleaved rounds."""
+    from agent import fast_loop
+
+    fast_loop.load_kernel()  # compiled or loaded from numba's cache before any clock runs
+    names = [spec.name for spec in load_config("paper_fig4").strategies]
+    ratios: dict[str, list[float]] = {name: [] for name in names}
+    rates: dict[str, list[tuple[float, float]]] = {name: [] for name in names}
+    steps: dict[str, int] = {}
+    identical = {name: True for name in names}
+    for i in range(rounds):
+        for name in names if i % 2 == 0 else names[::-1]:
+            order = (False, True) if i % 2 == 0 else (True, False)
+            timed = {fast: timed_learning(name, episodes, fast) for fast in order}
+            (reference, history0), (fast, history1) = timed[False], timed[True]
+            identical[name] &= history0 == history1
+            steps[name] = sum(s.steps for s in history0)
+            ratios[name].append(reference / fast)
+            rates[name].append((steps[name] / reference, steps[name] / fast))
+    print(
+        f"learning loop, paper_fig4 strategies, default maze, kinematic, {episodes} episodes "
+        f"(run 0's seeds), CPU time, median of {rounds} interleaved rounds (quartiles)"
+    )
+    print(f"  {'strategy':26s} {'steps':>9s} {'reference/s':>12s} {'fast/s':>11s} ratio")
+    for name in names:
+        values = sorted(ratios[name])
+        low, high = (
+            statistics.quantiles(values, n=4)[::2] if len(values) >= 4 else (values[0], values[-1])
+        )
+        reference = statistics.median(r for r, _ in rates[name])
+        fast = statistics.median(f for _, f in rates[name])
+        print(
+            f"  {name:26s} {steps[name]:>9,d} {reference:>12,.0f} {fast:>11,.0f} "
+            f"{statistics.median(values):5.2f}x ({low:.2f}-{high:.2f})"
+            f"{'' if identical[name] else '  EPISODES DIFFER'}"
+        )
+    print(f"  identical episodes in every round: {all(identical.values())} (target: 3x, same CSVs)")
+
+
 @dataclasses.dataclass(frozen=True)
 class PoolTiming:
     """One experiment run with a given number of workers."""
@@ -72,9 +132,13 @@ class PoolTiming:
     """Mean CPU time of a run's learning loop (rises when runs share a core or its caches)."""
     load_before: float
     """1-minute load average when it started (other people's processes count)."""
+    steps_per_s: float = 0.0
+    """Mean over runs of a run's steps per second of wall time (per worker)."""
 
 
-def worker_speedup(runs: int, episodes: int) -> tuple[list[PoolTiming], bool]:
+def worker_speedup(
+    runs: int, episodes: int, backend: str = "process"
+) -> tuple[list[PoolTiming], bool]:
     """One small experiment with 1 and then 2 workers; and whether the CSVs agree.
 
     The experiment is epsilon-greedy 0.015 alone: in the default maze its early episodes run
@@ -91,10 +155,14 @@ def worker_speedup(runs: int, episodes: int) -> tuple[list[PoolTiming], bool]:
             out = Path(folder) / f"w{workers}"
             load = os.getloadavg()[0]
             start = time.perf_counter()
-            results = runner.run_experiment(config, out, ProcessBackend(workers))
+            pool = (
+                ProcessBackend(workers) if backend == "process" else make_backend(backend, workers)
+            )
+            results = runner.run_experiment(config, out, pool)
             wall = time.perf_counter() - start
             cpu = float(np.mean([r.meta["cpu_time_s"] for r in results]))
-            timings.append(PoolTiming(workers, wall, cpu, load))
+            rate = float(np.mean([r.steps_per_second for r in results]))
+            timings.append(PoolTiming(workers, wall, cpu, load, rate))
         same = (Path(folder) / "w1" / runner.EPISODES_FILE).read_bytes() == (
             Path(folder) / "w2" / runner.EPISODES_FILE
         ).read_bytes()
@@ -144,7 +212,14 @@ def main() -> None:
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument(
-        "--only", choices=("speed", "workers", "memory"), help="run one measurement only"
+        "--only", choices=("ratio", "speed", "workers", "memory"), help="run one measurement only"
+    )
+    parser.add_argument(
+        "--ratio-episodes", type=int, default=100, help="episodes per run of (1) (default: 100)"
+    )
+    parser.add_argument("--rounds", type=int, default=3, help="interleaved rounds of (1)")
+    parser.add_argument(
+        "--backend", choices=("process", "ray"), default="process", help="backend of (3)"
     )
     parser.add_argument(
         "--episodes", type=int, default=300, help="episodes of the speed measurement (default: 300)"
@@ -169,6 +244,8 @@ def main() -> None:
     )
     args = parser.parse_args()
 
+    if args.only in (None, "ratio"):
+        fast_ratios(args.ratio_episodes, args.rounds)
     if args.only in (None, "speed"):
         bare = bare_env_speed(50_000)
         rate, steps, wall = learning_speed(args.episodes)
@@ -183,11 +260,11 @@ def main() -> None:
         )
     if args.only in (None, "workers"):
         reference = machine_speedup()
-        timings, same = worker_speedup(args.runs, args.worker_episodes)
+        timings, same = worker_speedup(args.runs, args.worker_episodes, args.backend)
         one, two = timings
         print(
-            f"experiment {args.runs} runs x {args.worker_episodes} episodes: 1 worker "
-            f"{one.wall_s:.1f} s, 2 workers {two.wall_s:.1f} s, speed-up "
+            f"experiment ({args.backend}) {args.runs} runs x {args.worker_episodes} episodes: "
+            f"1 worker {one.wall_s:.1f} s, 2 workers {two.wall_s:.1f} s, speed-up "
             f"{one.wall_s / two.wall_s:.2f}x (target 1.8x); identical CSVs: {same}"
         )
         print(
@@ -195,6 +272,10 @@ def main() -> None:
             f"at a time; load average before: {one.load_before:.1f}, {two.load_before:.1f} "
             f"(on {os.cpu_count()} cores); the machine itself gave {reference:.2f}x for two "
             "pure-Python loops just before"
+        )
+        print(
+            f"  steps/s per worker (mean over runs): {one.steps_per_s:,.0f} with 1 worker, "
+            f"{two.steps_per_s:,.0f} with 2"
         )
         print(
             f"  bound set by the CPU time per run (2 x alone / two at a time): "

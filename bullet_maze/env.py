@@ -12,7 +12,7 @@ import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, SupportsFloat
+from typing import Any, NamedTuple, SupportsFloat
 
 import gymnasium as gym
 import numpy as np
@@ -37,7 +37,7 @@ from bullet_maze.robots import (
 )
 from bullet_maze.robots.drives import facing
 from bullet_maze.sensors import Lidar, LidarParams
-from bullet_maze.world import CONTACT_TOLERANCE, World
+from bullet_maze.world import CELL, CELL_REACH, CONTACT_TOLERANCE, World
 
 logger = logging.getLogger(__name__)
 
@@ -55,6 +55,31 @@ MAX_RENDER_SIZE = 4096
 
 _FAST_ACTION_TYPES = frozenset((int, np.int64))
 """Action types ``step`` looks up without conversion (``bool`` is not one: it is refused)."""
+
+
+class FastCore(NamedTuple):
+    """What ``BulletMazeEnv.fast_core`` hands the fast learning loop (read-only views)."""
+
+    world: World
+    moves: tuple[tuple[float, float], ...]
+    """The move of each action, before noise."""
+    goal: tuple[float, float]
+    goal_radius: float
+    goal_reward: float
+    collision_reward: float
+    step_reward: float
+    position: tuple[float, float]
+    noise: list[float]
+    """The current noise block (x then y per step); ``step`` draws the next when it is spent."""
+    noise_index: int
+    cells: dict[tuple[int, int], Any]
+    """``World._cells``: each seen cell's bounds (``_CellBounds`` or None); grows as cells are
+    seen."""
+    safe_ball: tuple[float, float, float]
+    arena: tuple[float, float]
+    cell: float
+    cell_reach: float
+    tolerance: float
 
 
 class BulletMazeEnv(gym.Env[Any, Any]):
@@ -525,6 +550,51 @@ class BulletMazeEnv(gym.Env[Any, Any]):
     def client_id(self) -> int:
         """The env's pybullet client (-1 once closed)."""
         return self._client
+
+    def fast_core(self, commit: tuple[float, float, int, bool] | None = None) -> FastCore | None:
+        """The fast learning loop's contract (``agent/fast_loop.py``): what it reads to take
+        kinematic steps itself, or None when this env is not eligible (dynamic mode, a robot
+        with a heading, actions other than the compass, an observation other than the pose, a
+        render mode).
+
+        With ``commit=(x, y, noise_index, moved)`` the position and the noise position are
+        first set to what ``step`` would have left after the same steps (``moved``: one of them
+        moved the robot). The loop repeats ``step``'s kinematic branch with the noise of
+        ``noise`` from ``noise_index``: it takes the moves that ``World.certified_free`` proves
+        free from the cached cell bounds and safe ball given here, asks
+        ``world.sweep_collides`` (``step``'s own call) about the others, then reads the safe ball
+        (``World._safe``) and the live cell dict again, and leaves a step that needs a new noise
+        block to ``step`` itself.
+        """
+        if (
+            not self._kinematic
+            or self._has_heading
+            or not self._plain
+            or self.render_mode is not None
+        ):
+            return None
+        if commit is not None:
+            self._x, self._y, self._noise_index, moved = commit
+            if moved:
+                self._body_in_sync = False
+        return FastCore(
+            world=self.world,
+            moves=tuple(self._moves.values()),  # keyed 0, 1, ... in order
+            goal=self._goal,
+            goal_radius=self._goal_radius,
+            goal_reward=self._goal_reward,
+            collision_reward=self._collision_reward,
+            step_reward=self._step_reward,
+            position=(self._x, self._y),
+            noise=self._noise,
+            noise_index=self._noise_index,
+            cells=self.world._cells,
+            safe_ball=self.world._safe,
+            arena=self._arena,
+            cell=CELL,
+            cell_reach=CELL_REACH,
+            tolerance=CONTACT_TOLERANCE,
+        )
 
     # -- Internals -----------------------------------------------------------------------
 

@@ -1,0 +1,1276 @@
+"""The fast learning loop: ``SMDPAgent.learn``'s episodes run by a compiled kernel, same numbers.
+
+``learn(fast=True)`` (the default) asks :func:`episode_runner` for the function that runs one
+episode. It returns a :class:`FastRunner` when the kernel implements everything the run needs,
+else the reference :meth:`~agent.learner.SMDPAgent._run_episode`; both give the same episodes,
+Q-tables, trees, strategy states and random streams bit for bit (``tests/agent/
+test_fast_loop.py`` compares them; ``tests/golden`` checks the fast path against files recorded
+from the reference code). The reference runs instead, automatically, when
+
+* the env is not ours: ``env.unwrapped`` must be a ``BulletMazeEnv`` whose ``fast_core()``
+  accessor (its contract with this module) answers, i.e. kinematic mode, a robot without a
+  heading, no render mode, wrapped by nothing but ``TimeLimit``, ``OrderEnforcing`` and
+  ``PassiveEnvChecker`` (what ``gymnasium.make`` adds);
+* the compiled kernel (:mod:`agent.fast_kernel`, numba) is missing or fails to compile;
+* the agent or its strategy is not one the kernel implements: an explicit whitelist of the
+  agent classes, the ``TreeConfig`` fields and values, the strategy classes, their attributes
+  and parameter values (:func:`ineligible_reason`), so that a field or a class added later
+  falls back instead of running wrongly;
+* a function the kernel mirrors, or whose effects the driver re-reads, has changed: each one's
+  source (without docstrings and comments) is fingerprinted in :data:`FINGERPRINTS`; a
+  mismatch is logged once and turns the fast loop off until the kernel is checked against the
+  new code and the fingerprint renewed (``tests/agent/test_fast_loop.py`` fails meanwhile).
+
+How it works. The kernel runs the reference's episode loop on arrays mirroring the agent
+(tree, Q-bar, counts, strategy state, tabu list, error buffers, the uniform block) and the env
+(position, noise block, cached cell bounds and safe ball of ``World.certified_free``). It takes
+a step itself only when the cached bounds prove the move free and the goal test is certain; any
+other step (a collision, a pybullet sweep, an unseen cell, a new noise block, the checker's
+first steps) is ``env.step`` itself, through the wrappers, so pybullet, the noise stream and
+``TimeLimit`` truncation are the env's own. A split test (a leaf's buffer fills) runs the
+reference's ``partition.record`` and ``_grow``. Before each of these calls, and at the end of
+every episode (before ``learn``'s callback), the driver writes what the kernel changed back into
+the Python objects, so a callback, ``save`` or ``predict`` sees exactly the reference's state.
+A callback that changes the agent's tables in place is not seen by the kernel: use
+``fast=False`` for that (replacing the strategy, the config or the tables is detected).
+"""
+
+from __future__ import annotations
+
+import ast
+import dataclasses
+import hashlib
+import inspect
+import itertools
+import logging
+import math
+import sys
+import textwrap
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker, TimeLimit
+
+from agent import smdp
+from agent.config import TreeConfig
+from agent.episode_stats import EpisodeStats
+from agent.error_buffer import ErrorBuffer
+from agent.exploration import VDBE, AdaptiveEpsilon, EpsilonGreedy, Greedy, Tabu
+from agent.exploration import adaptive as adaptive_module
+from agent.exploration import base as base_module
+from agent.exploration import tabu as tabu_module
+from agent.exploration import vdbe as vdbe_module
+from agent.exploration.base import Exploration
+from agent.grid_agent import GridAgent
+from agent.learner import SMDPAgent
+from agent.partition_tree import PartitionTree
+from agent.random_stream import UniformStream
+from agent.tree_agent import TreeAgent
+from agent.uniform_grid import UniformGrid
+
+logger = logging.getLogger(__name__)
+
+RunEpisode = Callable[[Any, Any], EpisodeStats]
+
+MAX_ACTIONS = 62
+"""The tabu list keeps each leaf's listed actions as bits of one int64."""
+MAX_TABU_CAPACITY = 1 << 20
+
+# -- What the kernel implements ---------------------------------------------------------------
+
+CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
+    "alpha": float,
+    "gamma": float,
+    "q_init": (float, int),
+    "max_epoch_steps": (int, type(None)),
+    "hold_exploration": bool,
+    "end_epoch_on_collision": bool,
+    "collision_key": ("collision",),
+    "split_min_samples": int,
+    "split_max_abs_mean": (float, int),
+    "split_min_variance": (float, int),
+    "error_buffer": ("clear",),
+    "range_normalization": ("root", "none"),
+    "split_point": ("quest", "midpoint"),
+    "inherit_q": bool,
+    "reset_counts_on_split": bool,
+    "children_inherit_samples": bool,
+    "min_leaf_fraction": float,
+    "max_leaves": int,
+}
+"""Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
+split fields run in Python, so any valid value). A field not listed here turns it off."""
+
+_EXPLORATION_ATTRIBUTES = {"n_actions", "explored"}
+STRATEGY_ATTRIBUTES: dict[type, set[str]] = {
+    EpsilonGreedy: {"_epsilon"} | _EXPLORATION_ATTRIBUTES,
+    Greedy: {"_epsilon"} | _EXPLORATION_ATTRIBUTES,
+    AdaptiveEpsilon: {"c_n", "c_h", "variant", "inherit_on_split", "_counts", "_epsilon"}
+    | _EXPLORATION_ATTRIBUTES,
+    VDBE: {"sigma", "delta", "form", "inherit_on_split", "_epsilon"} | _EXPLORATION_ATTRIBUTES,
+    Tabu: {
+        "base",
+        "initial_capacity",
+        "shrink_every",
+        "min_capacity",
+        "on_split_policy",
+        "random_respects_list",
+        "deviation_explores",
+        "all_listed",
+        "successes",
+        "_capacity",
+        "_fifo",
+        "_by_leaf",
+    }
+    | _EXPLORATION_ATTRIBUTES,
+}
+"""The strategy classes the kernel implements (exactly these classes, not subclasses) and the
+instance attributes each may have; a class or attribute not listed turns the fast loop off."""
+
+STRATEGY_PARAMETERS: dict[type, dict[str, tuple[Any, ...] | type | tuple[type, ...]]] = {
+    EpsilonGreedy: {"epsilon": float},
+    Greedy: {},
+    AdaptiveEpsilon: {
+        "c_n": float,
+        "c_h": float,
+        "variant": ("literal", "cn_exponent"),
+        "inherit_on_split": bool,
+    },
+    VDBE: {
+        "sigma": float,
+        "delta": (float, type(None)),
+        "form": ("boltzmann", "exponential"),
+        "inherit_on_split": bool,
+    },
+    Tabu: {
+        "initial_capacity": int,
+        "shrink_every": int,
+        "min_capacity": int,
+        "on_split": ("drop", "inherit"),
+        "random_respects_list": bool,
+        "deviation_explores": bool,
+        "all_listed": ("greedy", "random"),
+    },
+}
+"""``params()`` of each strategy class: the types or values the kernel implements."""
+
+AGENT_ATTRIBUTES = {
+    "n_actions",
+    "observation_space",
+    "action_space",
+    "bounds",
+    "config",
+    "exploration",
+    "seed",
+    "rng",
+    "uniform",
+    "partition",
+    "q",
+    "visits",
+    "episodes_done",
+}
+AGENT_CLASSES: dict[type, tuple[type, set[str]]] = {
+    TreeAgent: (PartitionTree, AGENT_ATTRIBUTES),
+    GridAgent: (UniformGrid, AGENT_ATTRIBUTES | {"resolution"}),
+}
+WRAPPERS = (TimeLimit, OrderEnforcing, PassiveEnvChecker)
+
+# -- The reference code the kernel mirrors ----------------------------------------------------
+
+
+def _agent_functions() -> dict[str, Any]:
+    return {
+        "SMDPAgent._run_episode": SMDPAgent._run_episode,
+        "SMDPAgent._end_epoch": SMDPAgent._end_epoch,
+        "SMDPAgent._end_held_run": SMDPAgent._end_held_run,
+        "SMDPAgent._grow": SMDPAgent._grow,
+        "PartitionTree.leaf_of": PartitionTree.leaf_of,
+        "PartitionTree.record": PartitionTree.record,
+        "PartitionTree._try_split": PartitionTree._try_split,
+        "PartitionTree.split": PartitionTree.split,
+        "UniformGrid.leaf_of": UniformGrid.leaf_of,
+        "ErrorBuffer.__init__": ErrorBuffer.__init__,
+        "ErrorBuffer.add": ErrorBuffer.add,
+        "UniformStream.random": UniformStream.random,
+        "epoch_returns": smdp.epoch_returns,
+        "leaf_update": smdp.leaf_update,
+        "greedy_action": base_module.greedy_action,
+        "Exploration.select": Exploration.select,
+        "Exploration.update": Exploration.update,
+        "Exploration.on_epoch_end": Exploration.on_epoch_end,
+        "Exploration.on_episode_end": Exploration.on_episode_end,
+        "Exploration.on_split": Exploration.on_split,
+        "EpsilonGreedy.epsilon": EpsilonGreedy.epsilon,
+        "adaptive_epsilon": adaptive_module.adaptive_epsilon,
+        "AdaptiveEpsilon.epsilon": AdaptiveEpsilon.epsilon,
+        "AdaptiveEpsilon.update": AdaptiveEpsilon.update,
+        "AdaptiveEpsilon.on_split": AdaptiveEpsilon.on_split,
+        "vdbe_epsilon": vdbe_module.vdbe_epsilon,
+        "VDBE.epsilon": VDBE.epsilon,
+        "VDBE.update": VDBE.update,
+        "VDBE.on_split": VDBE.on_split,
+        "tabu_capacity": tabu_module.tabu_capacity,
+        "Tabu.epsilon": Tabu.epsilon,
+        "Tabu.select": Tabu.select,
+        "Tabu.update": Tabu.update,
+        "Tabu.on_epoch_end": Tabu.on_epoch_end,
+        "Tabu.on_episode_end": Tabu.on_episode_end,
+        "Tabu.on_split": Tabu.on_split,
+        "Tabu._set_entries": Tabu._set_entries,
+        "Tabu._trim": Tabu._trim,
+        "TimeLimit.step": TimeLimit.step,
+        "OrderEnforcing.step": OrderEnforcing.step,
+        "PassiveEnvChecker.step": PassiveEnvChecker.step,
+    }
+
+
+def _env_functions(base: Any) -> dict[str, Any]:
+    env_type = type(base)
+    world_type = type(base.world)
+    bounds_type = getattr(sys.modules[world_type.__module__], "_CellBounds", None)
+    return {
+        "BulletMazeEnv.step": env_type.step,
+        "BulletMazeEnv.fast_core": env_type.fast_core,
+        "World.certified_free": world_type.certified_free,
+        "World.sweep_collides": world_type.sweep_collides,
+        "_CellBounds.clear": getattr(bounds_type, "clear", None),
+    }
+
+
+FINGERPRINTS = {
+    "SMDPAgent._run_episode": "5b46a3f8d1a7c8b6",
+    "SMDPAgent._end_epoch": "3d59b2f6d12c80a4",
+    "SMDPAgent._end_held_run": "e2ff8534fb590926",
+    "SMDPAgent._grow": "4812c9c927bd461a",
+    "PartitionTree.leaf_of": "ee41c6188076754e",
+    "PartitionTree.record": "59927c0165e2e63b",
+    "PartitionTree._try_split": "ee4f860b7b6a4fd8",
+    "PartitionTree.split": "d41c976a347495ae",
+    "UniformGrid.leaf_of": "d0472db7cca8f40e",
+    "ErrorBuffer.__init__": "9ea1b2a8897928d2",
+    "ErrorBuffer.add": "60eb94099d6ba852",
+    "UniformStream.random": "8991e422a2b3f799",
+    "epoch_returns": "8f2bfb5777511e81",
+    "leaf_update": "1aa0af332e5cc0c6",
+    "greedy_action": "c43bc5b9cbb79b19",
+    "Exploration.select": "b2109fc92c7a3fb8",
+    "Exploration.update": "589163276cb10827",
+    "Exploration.on_epoch_end": "2a01ca4b36cedde8",
+    "Exploration.on_episode_end": "6bf65031d32947e1",
+    "Exploration.on_split": "175a17efdbde8865",
+    "EpsilonGreedy.epsilon": "14f180e6c73b2563",
+    "adaptive_epsilon": "a23633a5f70a7e2c",
+    "AdaptiveEpsilon.epsilon": "9ba4c0e190b56a89",
+    "AdaptiveEpsilon.update": "f03d7f7a92ad4a2c",
+    "AdaptiveEpsilon.on_split": "069b7bb541ea2745",
+    "vdbe_epsilon": "4ed44ee07531fec3",
+    "VDBE.epsilon": "9ba4c0e190b56a89",
+    "VDBE.update": "c089f8723b6d394f",
+    "VDBE.on_split": "5af4d87122d6ac93",
+    "tabu_capacity": "083948ac4f6c1898",
+    "Tabu.epsilon": "1ee7eb40149dc2db",
+    "Tabu.select": "d7f68ee05b2f61f9",
+    "Tabu.update": "457351dc2f9d8346",
+    "Tabu.on_epoch_end": "4523ff8830426e8c",
+    "Tabu.on_episode_end": "83eece081c3a7c60",
+    "Tabu.on_split": "f5548097fe94595f",
+    "Tabu._set_entries": "2fe8129b9a3d0fbb",
+    "Tabu._trim": "9531e620c13b05c6",
+    "TimeLimit.step": "f58ba6b39e92c509",
+    "OrderEnforcing.step": "392ca0c995845830",
+    "PassiveEnvChecker.step": "c00068accb0b439f",
+    "BulletMazeEnv.step": "aaf035ed8ba32539",
+    "BulletMazeEnv.fast_core": "7936da0308bf1673",
+    "World.certified_free": "4e09b0d9feccf14f",
+    "World.sweep_collides": "a558adefa017c807",
+    "_CellBounds.clear": "70e9511f5b4adbf8",
+}
+"""Hash of each mirrored function's source (docstrings and comments removed, :func:`fingerprint`)
+as the kernel was checked against it."""
+
+
+def fingerprint(function: Any) -> str:
+    """First 16 hex digits of the SHA-256 of the function's source, parsed and unparsed without
+    its docstrings (so comments, formatting and docstrings do not count)."""
+    source = textwrap.dedent(inspect.getsource(function))
+    tree = ast.parse(source)
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if (
+            isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef | ast.Module)
+            and body
+            and isinstance(body[0], ast.Expr)
+            and isinstance(body[0].value, ast.Constant)
+            and isinstance(body[0].value.value, str)
+        ):
+            node.body = body[1:] or [ast.Pass()]
+    return hashlib.sha256(ast.unparse(tree).encode()).hexdigest()[:16]
+
+
+def current_fingerprints(base_env: Any) -> dict[str, str]:
+    """:func:`fingerprint` of every mirrored function, the env's taken from ``base_env``."""
+    functions = {**_agent_functions(), **_env_functions(base_env)}
+    return {
+        name: fingerprint(function) if function is not None else "missing"
+        for name, function in functions.items()
+    }
+
+
+_checked_types: dict[tuple[type, type], str | None] = {}
+
+
+def _changed_code(base_env: Any) -> str | None:
+    key = (type(base_env), type(base_env.world))
+    if key not in _checked_types:
+        current = current_fingerprints(base_env)
+        changed = sorted(name for name, value in current.items() if FINGERPRINTS.get(name) != value)
+        reason = None
+        if changed:
+            reason = f"mirrored code changed since the kernel was checked: {', '.join(changed)}"
+            logger.warning("fast learning loop off: %s (the reference loop runs)", reason)
+        _checked_types[key] = reason
+    return _checked_types[key]
+
+
+# -- Eligibility -----------------------------------------------------------------------------
+
+
+@dataclasses.dataclass(frozen=True)
+class _Chain:
+    base: Any
+    time_limit: TimeLimit | None
+    order: OrderEnforcing | None
+    checker: PassiveEnvChecker | None
+
+
+def _wrapper_chain(env: Any) -> _Chain | str:
+    found: dict[type, Any] = {}
+    layer = env
+    while type(layer) in WRAPPERS:
+        if type(layer) in found:
+            return f"two {type(layer).__name__} wrappers"
+        found[type(layer)] = layer
+        layer = layer.env
+    if layer is not getattr(env, "unwrapped", None):
+        return f"wrapper {type(layer).__name__} is not one the fast loop knows"
+    if type(layer).__name__ != "BulletMazeEnv" or type(layer).__module__ != "bullet_maze.env":
+        return f"env {type(layer).__name__} is not bullet_maze's BulletMazeEnv"
+    return _Chain(
+        layer, found.get(TimeLimit), found.get(OrderEnforcing), found.get(PassiveEnvChecker)
+    )
+
+
+def _value_ok(value: Any, allowed: Any) -> bool:
+    if isinstance(allowed, tuple) and allowed and not isinstance(allowed[0], type):
+        return isinstance(value, str) and value in allowed
+    if isinstance(value, bool) and allowed is not bool and bool not in _as_tuple(allowed):
+        return False
+    return isinstance(value, allowed)
+
+
+def _as_tuple(allowed: Any) -> tuple[Any, ...]:
+    return allowed if isinstance(allowed, tuple) else (allowed,)
+
+
+def _strategy_reason(strategy: Any, top: bool = True) -> str | None:
+    kind = type(strategy)
+    if kind not in STRATEGY_ATTRIBUTES:
+        return f"exploration class {kind.__name__} is not one the fast loop implements"
+    extra = set(vars(strategy)) - STRATEGY_ATTRIBUTES[kind]
+    if extra:
+        return f"{kind.__name__} has attributes the fast loop does not know: {sorted(extra)}"
+    params = strategy.params()
+    allowed = STRATEGY_PARAMETERS[kind]
+    if set(params) != set(allowed):
+        return f"{kind.__name__} parameters {sorted(params)} are not {sorted(allowed)}"
+    for name, value in params.items():
+        if not _value_ok(value, allowed[name]):
+            return f"{kind.__name__} parameter {name}={value!r} is not implemented"
+    if kind is Tabu:
+        if not top:
+            return "a tabu list inside a tabu list"
+        if max(strategy.initial_capacity, strategy.min_capacity) > MAX_TABU_CAPACITY:
+            return f"tabu capacity above {MAX_TABU_CAPACITY}"
+        return _strategy_reason(strategy.base, top=False)
+    return None
+
+
+def ineligible_reason(agent: Any, env: Any) -> str | None:
+    """Why the fast loop cannot run ``agent`` on ``env`` (None when it can)."""
+    kind: type = type(agent)
+    if kind not in AGENT_CLASSES:
+        return f"agent class {kind.__name__} is not TreeAgent or GridAgent"
+    partition_type, attributes = AGENT_CLASSES[kind]
+    extra = set(vars(agent)) - attributes
+    if extra:
+        return f"{kind.__name__} has attributes the fast loop does not know: {sorted(extra)}"
+    partition: Any = agent.partition
+    if type(partition) is not partition_type:
+        return f"partition {type(partition).__name__} is not {partition_type.__name__}"
+    dims = getattr(partition, "dims", None)
+    if dims != 2:
+        return f"{dims}-dimensional inputs (the kernel takes 2)"
+    if type(agent.uniform) is not UniformStream:
+        return "the agent's uniform source is not a UniformStream"
+    config = agent.config
+    if type(config) is not TreeConfig:
+        return f"config {type(config).__name__} is not TreeConfig"
+    fields = {f.name for f in dataclasses.fields(config)}
+    if fields != set(CONFIG_FIELDS):
+        return (
+            f"TreeConfig fields differ from the fast loop's: {sorted(fields ^ set(CONFIG_FIELDS))}"
+        )
+    for name, allowed in CONFIG_FIELDS.items():
+        if not _value_ok(getattr(config, name), allowed):
+            return f"TreeConfig.{name}={getattr(config, name)!r} is not implemented"
+    if not 1 <= agent.n_actions <= MAX_ACTIONS:
+        return f"{agent.n_actions} actions (the kernel takes 1 to {MAX_ACTIONS})"
+    reason = _strategy_reason(agent.exploration)
+    if reason:
+        return reason
+    chain = _wrapper_chain(env)
+    if isinstance(chain, str):
+        return chain
+    core = chain.base.fast_core()
+    if core is None:
+        return "the env is not kinematic with a heading-free robot and no render mode"
+    if len(core.moves) != agent.n_actions:
+        return f"the env has {len(core.moves)} moves, the agent {agent.n_actions} actions"
+    return _changed_code(chain.base)
+
+
+# -- The kernel ----------------------------------------------------------------------------
+
+_kernel: Any = None
+
+
+def load_kernel() -> Any:
+    """:mod:`agent.fast_kernel`, compiled (or loaded from numba's cache) on first use; None
+    when numba is missing or compiling fails (logged once)."""
+    global _kernel
+    if _kernel is None:
+        try:
+            from agent import fast_kernel
+
+            runner = FastRunner.__new__(FastRunner)
+            runner._dummy_arrays(fast_kernel)
+            event = fast_kernel.run_episode(*runner._args())
+            if event != fast_kernel.EV_DONE:
+                raise RuntimeError(f"the kernel's warm-up returned event {event}")
+            _kernel = fast_kernel
+        except Exception as error:  # ImportError without numba, numba's errors when compiling
+            logger.warning("fast learning loop unavailable (%s): the reference loop runs", error)
+            _kernel = False
+    return _kernel or None
+
+
+def episode_runner(agent: SMDPAgent, env: Any) -> RunEpisode:
+    """The function that runs one episode of ``agent.learn`` on ``env``: a :class:`FastRunner`
+    when the fast loop applies, else the reference ``agent._run_episode``."""
+    reason = ineligible_reason(agent, env)
+    if reason is None:
+        kernel = load_kernel()
+        if kernel is not None:
+            return FastRunner(agent, env, kernel)
+        reason = "the compiled kernel is unavailable"
+    logger.debug("fast learning loop off: %s", reason)
+    return agent._run_episode
+
+
+# -- The driver ------------------------------------------------------------------------------
+
+
+class FastRunner:
+    """Runs ``agent``'s episodes on ``env`` with the kernel; see the module docstring.
+
+    Holds the arrays that mirror the agent and the env between episodes of one ``learn`` call;
+    after each episode and before every call into Python code the Python objects are brought
+    up to date, so they are the truth whenever anything else can look.
+    """
+
+    agent: Any
+    env: Any
+    k: Any
+    chain: _Chain
+    base: Any
+    world: Any
+    cell_table: dict[tuple[int, int], Any]
+    tabu: Any
+    strategy_base: Any
+    goal: tuple[float, float]
+    goal_radius: float
+    n_ids: int
+    nslots: int
+    ncells: int
+    nbounds: int
+    npieces: int
+    ubase: int
+    new_block: bool
+    _argtuple: tuple[Any, ...] | None
+    _noise_list: list[float] | None
+    _q_list: Any
+    _visits_list: Any
+    _partition: Any
+    _strategy: Any
+    _config: Any
+    _uniform: Any
+    st: np.ndarray
+    fs: np.ndarray
+    li: np.ndarray
+    lf: np.ndarray
+    q: np.ndarray
+    visits: np.ndarray
+    counts: np.ndarray
+    fifo: np.ndarray
+    ubuf: np.ndarray
+    grid_f: np.ndarray
+    grid_i: np.ndarray
+    xs: np.ndarray
+    rs: np.ndarray
+    held: np.ndarray
+    errs: np.ndarray
+    bufi: np.ndarray
+    buff: np.ndarray
+    bctr: np.ndarray
+    bsum: np.ndarray
+    free: np.ndarray
+    dirty: np.ndarray
+    moves: np.ndarray
+    noise: np.ndarray
+    cells: np.ndarray
+    bounds_c: np.ndarray
+    bounds_r: np.ndarray
+    pieces: np.ndarray
+
+    _ARRAYS = frozenset(
+        [
+            "st",
+            "fs",
+            "li",
+            "lf",
+            "q",
+            "visits",
+            "counts",
+            "fifo",
+            "ubuf",
+            "grid_f",
+            "grid_i",
+            "xs",
+            "rs",
+            "held",
+            "errs",
+            "bufi",
+            "buff",
+            "bctr",
+            "bsum",
+            "free",
+            "dirty",
+            "moves",
+            "noise",
+            "cells",
+            "bounds_c",
+            "bounds_r",
+            "pieces",
+        ]
+    )
+    """The kernel's array arguments, in order."""
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if name in self._ARRAYS:  # a replaced array: the argument tuple is rebuilt
+            object.__setattr__(self, "_argtuple", None)
+        object.__setattr__(self, name, value)
+
+    def __init__(self, agent: SMDPAgent, env: Any, kernel: Any) -> None:
+        chain = _wrapper_chain(env)
+        assert isinstance(chain, _Chain)
+        self.agent = agent
+        self.env = env
+        self.k = kernel
+        self.chain = chain
+        self.base = chain.base
+        self.env_seconds: float | None = None
+        """CPU seconds spent in the env's Python code (sweeps, ``env.step``) once a benchmark
+        sets this to 0.0 (``bench/bench_agent.py``); None: not measured."""
+        self._export()
+
+    # -- one episode ---------------------------------------------------------------------
+
+    def __call__(self, env: Any, obs: Any) -> EpisodeStats:
+        agent = self.agent
+        if env is not self.env or not self._agent_unchanged():
+            if env is self.env and ineligible_reason(agent, env) is None:
+                self._export()
+            else:
+                return agent._run_episode(env, obs)
+        k = self.k
+        st, fs = self.st, self.fs
+        x = obs.tolist() if type(obs) is np.ndarray else [float(v) for v in obs]
+        if len(x) != 2:
+            return agent._run_episode(env, obs)
+        fs[k.F_X], fs[k.F_Y] = x
+        core = self._import_env()
+        self.goal, self.goal_radius = core.goal, core.goal_radius
+        fs[k.F_GX], fs[k.F_GY] = core.goal
+        fs[k.F_GR] = core.goal_radius
+        st[k.I_PHASE] = k.PH_START
+        run = k.run_episode
+        try:
+            while True:
+                event = run(*self._args())
+                if event == k.EV_DONE:
+                    break
+                if event == k.EV_PY_STEP:
+                    self._python_step()
+                elif event == k.EV_SWEEP:
+                    self._sweep()
+                elif event == k.EV_RECORD:
+                    self._record()
+                elif event == k.EV_UNIFORM:
+                    self._next_uniform_block()
+                elif event == k.EV_GROW:
+                    self._grow_epoch_arrays()
+                elif event == k.EV_POOL:
+                    self._grow_pool(self.nslots + 16)
+                else:
+                    raise RuntimeError(f"fast loop: unknown kernel event {event}")
+        finally:
+            self._sync_agent()
+            self._commit_env()
+        terminated = bool(st[k.I_TERMINATED])
+        epochs = int(st[k.I_EPOCHS])
+        stats = EpisodeStats(
+            episode=agent.episodes_done,
+            steps=int(st[k.I_STEPS]),
+            episode_return=float(fs[k.F_TOTAL]),
+            success=bool(st[k.I_SUCCESS]),
+            truncated=bool(st[k.I_TRUNCATED]) and not terminated,
+            leaves=agent.partition.n_leaves,
+            collisions=int(st[k.I_COLLISIONS]),
+            epochs=epochs,
+            mean_epsilon=float(fs[k.F_EPS_SUM]) / epochs,
+        )
+        agent.episodes_done += 1
+        return stats
+
+    @property
+    def kernel_steps(self) -> int:
+        """Steps the kernel took itself so far (the rest went through ``env.step``)."""
+        return int(self.st[self.k.I_KERNEL_STEPS])
+
+    @property
+    def python_steps(self) -> int:
+        """Steps taken by ``env.step`` so far."""
+        return int(self.st[self.k.I_PY_STEPS])
+
+    def _agent_unchanged(self) -> bool:
+        agent = self.agent
+        return (
+            agent.q is self._q_list
+            and agent.visits is self._visits_list
+            and agent.partition is self._partition
+            and agent.exploration is self._strategy
+            and agent.config is self._config
+            and agent.uniform is self._uniform
+            and len(agent.q) == self.n_ids
+            and agent.partition.n_ids == self.n_ids
+        )
+
+    # -- events --------------------------------------------------------------------------
+
+    def _python_step(self) -> None:
+        k, st, fs = self.k, self.st, self.fs
+        self._commit_env()
+        start = time.process_time()
+        obs, reward, terminated, truncated, info = self.env.step(int(st[k.I_ACTION]))
+        if self.env_seconds is not None:
+            self.env_seconds += time.process_time() - start
+        x = obs.tolist() if type(obs) is np.ndarray else [float(v) for v in obs]
+        fs[k.F_OX], fs[k.F_OY] = x
+        fs[k.F_OR] = float(reward)
+        st[k.I_TERMINATED] = bool(terminated)
+        st[k.I_TRUNCATED] = bool(truncated)
+        st[k.I_COLLIDED] = bool(info.get(self.agent.config.collision_key, False))
+        st[k.I_SUCCESS] = bool(info["is_success"]) if "is_success" in info else bool(terminated)
+        st[k.I_PY_STEPS] += 1
+        self._import_env()
+
+    def _sweep(self) -> None:
+        """``env.step``'s call ``world.sweep_collides(x0, y0, x1, y1)`` and goal test, for a
+        move the kernel could not decide; the kernel does the rest of the step."""
+        k, st, fs = self.k, self.st, self.fs
+        x0, y0, x1, y1 = fs[k.F_SW_X0 : k.F_SW_Y1 + 1].tolist()
+        if self.env_seconds is None:
+            collided = self.world.sweep_collides(x0, y0, x1, y1)
+        else:
+            start = time.process_time()
+            collided = self.world.sweep_collides(x0, y0, x1, y1)
+            self.env_seconds += time.process_time() - start
+        x, y = (x0, y0) if collided else (x1, y1)
+        fs[k.F_OX] = x
+        fs[k.F_OY] = y
+        st[k.I_COLLIDED] = collided
+        gx, gy = self.goal
+        st[k.I_SUCCESS] = math.hypot(x - gx, y - gy) <= self.goal_radius
+        st[k.I_PY_STEPS] += 1
+        # the sweep renews the safe ball and may have seen a new cell (FastCore.safe_ball is
+        # World._safe, FastCore.cells the live World._cells)
+        fs[k.F_SX], fs[k.F_SY], fs[k.F_SR] = self.world._safe
+        if len(self.cell_table) != self.ncells:
+            self._import_cells(self.cell_table)
+
+    def _record(self) -> None:
+        """The tail of ``_end_epoch`` in Python: the split test of ``partition.record`` and,
+        after a split, ``_grow``."""
+        k, st = self.k, self.st
+        agent = self.agent
+        leaf = int(st[k.I_REC_LEAF])
+        self._sync_agent(record_leaf=leaf)
+        start, end = int(st[k.I_REC_START]), int(st[k.I_REC_END])
+        xs = self.xs[start:end].tolist()
+        errors = self.errs[: end - start].tolist()
+        partition = agent.partition
+        old_ids = partition.n_ids
+        children = partition.record(leaf, xs, errors)
+        if children is None:  # the test ran and the buffer was cleared: nothing else changed
+            st[k.I_SPLIT] = 0
+            self._import_buffer(leaf, partition._buffers.get(leaf))
+            return
+        agent._grow(leaf, children)
+        st[k.I_SPLIT] = 1
+        self._import_leaves([leaf, *range(old_ids, partition.n_ids)])
+
+    def _next_uniform_block(self) -> None:
+        """``UniformStream.random`` found its block spent: draw the next one now, exactly as it
+        would, after the draws of this choice not yet committed."""
+        k, st = self.k, self.st
+        stream = self.agent.uniform
+        tail = self.ubuf[int(st[k.I_UPOS]) : int(st[k.I_ULEN])]
+        block = stream.generator.random(stream.block)
+        self.ubuf = np.ascontiguousarray(np.concatenate((tail, block)))
+        st[k.I_UPOS] = 0
+        st[k.I_ULEN] = self.ubuf.shape[0]
+        self.ubase = tail.shape[0]
+        self.new_block = True
+
+    def _grow_epoch_arrays(self) -> None:
+        size = 2 * self.xs.shape[0]
+        self.xs = _resized(self.xs, size)
+        self.rs = _resized(self.rs, size)
+        self.held = _resized(self.held, size)
+        self.errs = _resized(self.errs, size)
+
+    # -- env state -----------------------------------------------------------------------
+
+    def _import_env(self) -> Any:
+        """Read the env's state (after a reset or a step taken by ``env.step``)."""
+        k, st, fs = self.k, self.st, self.fs
+        core = self.base.fast_core()
+        fs[k.F_EX], fs[k.F_EY] = core.position
+        if core.noise is not self._noise_list:
+            self._noise_list = core.noise
+            self.noise = np.array(core.noise if core.noise else [0.0, 0.0], dtype=np.float64)
+            st[k.I_NOISE_LEN] = len(core.noise)
+        st[k.I_NOISE] = core.noise_index
+        fs[k.F_SX], fs[k.F_SY], fs[k.F_SR] = core.safe_ball
+        if len(core.cells) != self.ncells:
+            self._import_cells(core.cells)
+        chain = self.chain
+        elapsed = chain.time_limit._elapsed_steps if chain.time_limit is not None else None
+        st[k.I_ELAPSED] = elapsed or 0  # None before the first reset
+        checker, order = chain.checker, chain.order
+        st[k.I_CHECKER_OK] = (
+            checker is None or (checker.checked_step and checker.checked_data_reuse)
+        ) and (order is None or order._has_reset)
+        st[k.I_MOVED] = st[k.I_BODY_MOVED] = 0
+        return core
+
+    def _commit_env(self) -> None:
+        """Hand the env what the kernel's own steps changed (position, noise, elapsed steps)."""
+        k, st, fs = self.k, self.st, self.fs
+        if st[k.I_MOVED]:
+            position = fs[k.F_EX : k.F_EY + 1].tolist()
+            self.base.fast_core(commit=(*position, int(st[k.I_NOISE]), bool(st[k.I_BODY_MOVED])))
+            st[k.I_MOVED] = st[k.I_BODY_MOVED] = 0
+        if self.chain.time_limit is not None:
+            self.chain.time_limit._elapsed_steps = int(st[k.I_ELAPSED])  # type: ignore[assignment]
+
+    def _import_cells(self, cells: dict[tuple[int, int], Any]) -> None:
+        k = self.k
+        table = self.cells
+        new = len(cells) - self.ncells
+        for (cx, cy), bounds in itertools.islice(reversed(cells.items()), new):
+            if not (0 <= cx < table.shape[0] and 0 <= cy < table.shape[1]):
+                continue  # left unseen: the kernel lets env.step take such moves
+            if bounds is None:
+                table[cx, cy] = k.CELL_USELESS
+                continue
+            index = self.nbounds
+            if index == self.bounds_c.shape[0]:
+                self.bounds_c = _resized(self.bounds_c, 2 * index)
+                self.bounds_r = _resized(self.bounds_r, 2 * index)
+            pieces = bounds.pieces
+            first = self.npieces
+            if first + len(pieces) > self.pieces.shape[0]:
+                self.pieces = _resized(self.pieces, 2 * (first + len(pieces)))
+            for j, piece in enumerate(pieces):
+                self.pieces[first + j] = piece
+            self.bounds_c[index] = (bounds.cx, bounds.cy)
+            self.bounds_r[index] = (first, len(pieces))
+            self.npieces = first + len(pieces)
+            self.nbounds = index + 1
+            table[cx, cy] = index
+        self.ncells = len(cells)
+
+    # -- agent state ---------------------------------------------------------------------
+
+    def _export(self) -> None:
+        """Copy the whole agent into fresh arrays (at the start, or after a callback replaced
+        part of it)."""
+        k = self.k
+        agent = self.agent
+        config = agent.config
+        partition = agent.partition
+        strategy = agent.exploration
+        tabu = strategy if type(strategy) is Tabu else None
+        base: Any = tabu.base if tabu is not None else strategy
+        actions = agent.n_actions
+        self._q_list, self._visits_list = agent.q, agent.visits
+        self._partition, self._strategy = partition, strategy
+        self._config, self._uniform = config, agent.uniform
+        self.tabu, self.strategy_base = tabu, base
+
+        st = self.st = np.zeros(k.N_INT, dtype=np.int64)
+        fs = self.fs = np.zeros(k.N_FLOAT, dtype=np.float64)
+        is_tree = type(partition) is PartitionTree
+        st[k.C_KIND] = 0 if is_tree else 1
+        st[k.C_ACTIONS] = actions
+        st[k.C_EPOCH_CAP] = (
+            config.max_epoch_steps if config.max_epoch_steps is not None else 1 << 62
+        )
+        st[k.C_HOLD_EXPLORATION] = config.hold_exploration
+        st[k.C_END_ON_COLLISION] = config.end_epoch_on_collision
+        st[k.C_RECORDS] = partition.records_errors
+        st[k.C_BUFFER_CAP] = config.split_min_samples
+        fs[k.F_ALPHA] = config.alpha
+        fs[k.F_GAMMA] = config.gamma
+        if type(base) is AdaptiveEpsilon:
+            st[k.C_STRATEGY] = k.S_ADAPTIVE
+            st[k.C_VARIANT] = base.variant == "cn_exponent"
+            fs[k.F_CN], fs[k.F_CH] = base.c_n, base.c_h
+        elif type(base) is VDBE:
+            st[k.C_STRATEGY] = k.S_VDBE
+            st[k.C_VARIANT] = base.form == "exponential"
+            fs[k.F_SIGMA] = base.sigma
+            fs[k.F_DELTA] = base.delta if base.delta is not None else 1.0 / base.n_actions
+        else:
+            st[k.C_STRATEGY] = k.S_EPSILON
+            fs[k.F_EPSILON] = base._epsilon
+        st[k.I_EXPLORED] = getattr(strategy, "explored", False)
+        st[k.I_BASE_EXPLORED] = getattr(base, "explored", False)
+
+        n_ids = self.n_ids = partition.n_ids
+        capacity = max(64, 2 * n_ids)
+        self.li = np.zeros((capacity, k.N_LI), dtype=np.int64)
+        self.lf = np.zeros((capacity, k.N_LF), dtype=np.float64)
+        self.li[:, k.L_DIM] = -1
+        self.li[:, k.L_SLOT] = -1
+        self.q = np.zeros((capacity, actions), dtype=np.float64)
+        self.visits = np.zeros((capacity, actions), dtype=np.int64)
+        self.counts = np.zeros((capacity, actions), dtype=np.int64)
+        self.dirty = np.zeros(capacity, dtype=np.int64)
+        self.grid_f = np.zeros((2, 2), dtype=np.float64)
+        self.grid_i = np.ones((2, 2), dtype=np.int64)
+        if not is_tree:
+            for i, low, scale, cells, stride in partition._terms:
+                self.grid_f[i] = (low, scale)
+                self.grid_i[i] = (cells, stride)
+
+        ring = 4
+        if tabu is not None:
+            ring = max(tabu.initial_capacity, tabu.min_capacity, len(tabu._fifo)) + 2
+            st[k.C_TABU] = 1
+            st[k.C_TABU_INITIAL] = tabu.initial_capacity
+            st[k.C_TABU_SHRINK] = tabu.shrink_every
+            st[k.C_TABU_MIN] = tabu.min_capacity
+            st[k.C_TABU_RESPECTS] = tabu.random_respects_list
+            st[k.C_TABU_DEVIATION] = tabu.deviation_explores
+            st[k.C_TABU_ALL_RANDOM] = tabu.all_listed == "random"
+        self.fifo = np.zeros((ring, 2), dtype=np.int64)
+
+        buffer_cap = config.split_min_samples
+        self.nslots = 0
+        self.bufi = np.zeros((0, 2 * buffer_cap), dtype=np.float64)
+        self.buff = np.zeros((0, buffer_cap), dtype=np.float64)
+        self.bctr = np.zeros((0, 3), dtype=np.int64)  # count, head, head as last synced
+        self.bsum = np.zeros((0, 2), dtype=np.float64)
+        self.free = np.zeros(0, dtype=np.int64)
+        self._grow_pool((partition.n_leaves if is_tree else 0) + 16)
+        self._import_all()
+
+        stream = agent.uniform
+        self.ubuf = np.array(stream._buffer, dtype=np.float64)
+        st[k.I_UPOS] = stream._position
+        st[k.I_ULEN] = self.ubuf.shape[0]
+        self.ubase = 0
+        self.new_block = False
+
+        size = config.max_epoch_steps if config.max_epoch_steps is not None else 1024
+        size = max(8, min(size, 1 << 16))
+        self.xs = np.zeros((size, 2), dtype=np.float64)
+        self.rs = np.zeros(size, dtype=np.float64)
+        self.held = np.zeros(size, dtype=np.int64)
+        self.errs = np.zeros(size, dtype=np.float64)
+
+        core = self.base.fast_core()
+        limit = self.chain.time_limit
+        max_steps = limit._max_episode_steps if limit is not None else None
+        st[k.C_MAX_STEPS] = -1 if max_steps is None else max_steps
+        self.moves = np.array(core.moves, dtype=np.float64).reshape(-1, 2)
+        fs[k.F_R_GOAL] = core.goal_reward
+        fs[k.F_R_STEP] = core.step_reward
+        fs[k.F_R_COLLISION] = core.collision_reward
+        self.world = core.world
+        self.cell_table = core.cells
+        fs[k.F_CELL] = core.cell
+        fs[k.F_CELL_REACH] = core.cell_reach
+        fs[k.F_TOLERANCE] = core.tolerance
+        width, height = core.arena
+        self.cells = np.full(
+            (int(width // core.cell) + 2, int(height // core.cell) + 2),
+            k.CELL_UNSEEN,
+            dtype=np.int64,
+        )
+        self.bounds_c = np.zeros((64, 2), dtype=np.float64)
+        self.bounds_r = np.zeros((64, 2), dtype=np.int64)
+        self.pieces = np.zeros((256, 3), dtype=np.float64)
+        self.nbounds = self.npieces = self.ncells = 0
+        self._noise_list = None
+        self.noise = np.zeros(2, dtype=np.float64)
+        self._import_env()
+
+    def _ensure_ids(self, n_ids: int) -> None:
+        capacity = self.li.shape[0]
+        if n_ids > capacity:
+            size = max(2 * capacity, n_ids)
+            li = _resized(self.li, size)
+            li[capacity:, self.k.L_DIM] = -1
+            li[capacity:, self.k.L_SLOT] = -1
+            self.li = li
+            self.lf = _resized(self.lf, size)
+            self.q = _resized(self.q, size)
+            self.visits = _resized(self.visits, size)
+            self.counts = _resized(self.counts, size)
+            self.dirty = _resized(self.dirty, size)
+        self.n_ids = n_ids
+
+    def _grow_pool(self, size: int) -> None:
+        old = self.nslots
+        if size <= old:
+            return
+        self.bufi = _resized(self.bufi, size)
+        self.buff = _resized(self.buff, size)
+        self.bctr = _resized(self.bctr, size)
+        self.bsum = _resized(self.bsum, size)
+        k = self.k
+        nfree = int(self.st[k.I_NFREE])
+        free = np.zeros(size, dtype=np.int64)
+        free[:nfree] = self.free[:nfree]
+        added = np.arange(size - 1, old - 1, -1, dtype=np.int64)  # lowest slot on top
+        free[nfree : nfree + added.shape[0]] = added
+        self.free = free
+        self.st[k.I_NFREE] = nfree + added.shape[0]
+        self.nslots = size
+
+    def _import_leaves(self, ids: Any) -> None:
+        """Copy these ids' tree node, Q-bar, counts, strategy state and error buffer from the
+        Python objects (they are the truth after Python code ran)."""
+        k = self.k
+        agent = self.agent
+        partition = agent.partition
+        self._ensure_ids(partition.n_ids)
+        li, lf = self.li, self.lf
+        base = self.strategy_base
+        is_tree = type(partition) is PartitionTree
+        adaptive = type(base) is AdaptiveEpsilon
+        vdbe = type(base) is VDBE
+        for i in ids:
+            if is_tree:
+                li[i, k.L_DIM] = partition._dim[i]
+                li[i, k.L_LEFT] = partition._left[i]
+                lf[i, k.LF_THRESHOLD] = partition._threshold[i]
+            self.q[i] = agent.q[i]
+            self.visits[i] = agent.visits[i]
+            li[i, k.L_COUNTS_HAS] = li[i, k.L_EPS_HAS] = 0
+            if adaptive:
+                counts = base._counts.get(i)
+                if counts is not None:
+                    self.counts[i] = counts
+                    li[i, k.L_COUNTS_HAS] = 1
+            if adaptive or vdbe:
+                eps = base._epsilon.get(i)
+                if eps is not None:
+                    lf[i, k.LF_EPS] = eps
+                    li[i, k.L_EPS_HAS] = 1
+            if is_tree:
+                self._import_buffer(i, partition._buffers.get(i))
+            li[i, k.L_DIRTY] = 0
+        if is_tree:
+            live = int(np.count_nonzero(li[: self.n_ids, k.L_SLOT] >= 0))
+            needed = partition.n_leaves - live
+            if int(self.st[k.I_NFREE]) < needed:
+                self._grow_pool(self.nslots + needed + 16)
+        self._import_tabu()
+
+    def _import_all(self) -> None:
+        """:meth:`_import_leaves` of every id, in bulk."""
+        k, li, lf = self.k, self.li, self.lf
+        agent = self.agent
+        partition: Any = agent.partition
+        n = self.n_ids
+        self.q[:n] = agent.q
+        self.visits[:n] = agent.visits
+        if type(partition) is PartitionTree:
+            li[:n, k.L_DIM] = partition._dim
+            li[:n, k.L_LEFT] = partition._left
+            lf[:n, k.LF_THRESHOLD] = partition._threshold
+            for leaf, buf in partition._buffers.items():
+                self._import_buffer(leaf, buf)
+        base = self.strategy_base
+        if type(base) is AdaptiveEpsilon:
+            for leaf, counts in base._counts.items():
+                self.counts[leaf] = counts
+                li[leaf, k.L_COUNTS_HAS] = 1
+        if type(base) is AdaptiveEpsilon or type(base) is VDBE:
+            for leaf, eps in base._epsilon.items():
+                lf[leaf, k.LF_EPS] = eps
+                li[leaf, k.L_EPS_HAS] = 1
+        self._import_tabu()
+
+    def _import_buffer(self, leaf: int, buf: ErrorBuffer | None) -> None:
+        k, st, li = self.k, self.st, self.li
+        slot = int(li[leaf, k.L_SLOT])
+        if buf is None:
+            if slot >= 0:  # the leaf split: its buffer was dropped
+                self.bufi[slot] = 0.0
+                self.buff[slot] = 0.0
+                self.bctr[slot] = 0
+                self.bsum[slot] = 0.0
+                self.free[st[k.I_NFREE]] = slot
+                st[k.I_NFREE] += 1
+                li[leaf, k.L_SLOT] = -1
+            return
+        if slot < 0:
+            if st[k.I_NFREE] == 0:
+                self._grow_pool(self.nslots + 16)
+            st[k.I_NFREE] -= 1
+            slot = int(self.free[st[k.I_NFREE]])
+            li[leaf, k.L_SLOT] = slot
+        self.bufi[slot] = np.frombuffer(buf.inputs, dtype=np.float64)
+        self.buff[slot] = np.frombuffer(buf.errors, dtype=np.float64)
+        self.bctr[slot] = (buf.count, buf.head, buf.head)
+        self.bsum[slot] = (buf.sum, buf.sum_sq)
+
+    def _import_tabu(self) -> None:
+        k, st, li = self.k, self.st, self.li
+        tabu = self.tabu
+        if tabu is None:
+            return
+        li[: self.n_ids, k.L_TABU_MASK] = 0
+        pairs = list(tabu._fifo)
+        if len(pairs) + 2 > self.fifo.shape[0]:
+            self.fifo = np.zeros((len(pairs) + 2, 2), dtype=np.int64)
+        for j, (leaf, action) in enumerate(pairs):
+            self.fifo[j] = (leaf, action)
+            li[leaf, k.L_TABU_MASK] |= 1 << action
+        st[k.I_TABU_HEAD] = 0
+        st[k.I_TABU_LEN] = len(pairs)
+        st[k.I_TABU_CAPACITY] = tabu._capacity
+        st[k.I_TABU_SUCCESSES] = tabu.successes
+        st[k.I_TABU_DIRTY] = 0
+
+    def _sync_agent(self, record_leaf: int | None = None) -> None:
+        """Write what the kernel changed into the Python objects.
+
+        With ``record_leaf`` (before a split test) only what the test and a split can read:
+        that leaf, the tabu list, and the ids whose dict entries the kernel created (written
+        now so that every dict keeps the reference's insertion order); the rest stays marked
+        and is written at the end of the episode.
+        """
+        k, st = self.k, self.st
+        n = int(st[k.I_NDIRTY])
+        if n:
+            ids = self.dirty[:n].copy()
+            if record_leaf is None:
+                st[k.I_NDIRTY] = 0
+            else:
+                now = (self.li[ids, k.L_NEW] != 0) | (ids == record_leaf)
+                rest = ids[~now]
+                ids = ids[now]
+                self.dirty[: rest.shape[0]] = rest
+                st[k.I_NDIRTY] = rest.shape[0]
+            if ids.shape[0]:
+                self._write_leaves(ids)
+        tabu = self.tabu
+        if tabu is not None and st[k.I_TABU_DIRTY]:
+            ring = self.fifo.shape[0]
+            head, length = int(st[k.I_TABU_HEAD]), int(st[k.I_TABU_LEN])
+            order = [(head + j) % ring for j in range(length)]
+            pairs = [(leaf, action) for leaf, action in self.fifo[order].tolist()]
+            tabu._fifo.clear()
+            tabu._fifo.extend(pairs)
+            by_leaf: dict[int, set[int]] = {}
+            for leaf, action in pairs:
+                by_leaf.setdefault(leaf, set()).add(action)
+            tabu._by_leaf = by_leaf
+            tabu._capacity = int(st[k.I_TABU_CAPACITY])
+            tabu.successes = int(st[k.I_TABU_SUCCESSES])
+            if length:  # compact the ring so that it starts at 0 again
+                self.fifo[:length] = self.fifo[order]
+            st[k.I_TABU_HEAD] = 0
+            st[k.I_TABU_DIRTY] = 0
+        if st[k.I_EXPLORED_DIRTY]:
+            self.agent.exploration.explored = bool(st[k.I_EXPLORED])
+            if tabu is not None and st[k.I_BASE_SELECTED]:
+                tabu.base.explored = bool(st[k.I_BASE_EXPLORED])
+            st[k.I_EXPLORED_DIRTY] = st[k.I_BASE_SELECTED] = 0
+        stream = self.agent.uniform
+        if self.new_block:
+            stream._buffer = self.ubuf[self.ubase :].tolist()
+            self.new_block = False
+        stream._position = int(st[k.I_UPOS]) - self.ubase
+
+    def _write_leaves(self, ids: np.ndarray) -> None:
+        k = self.k
+        agent = self.agent
+        id_list = ids.tolist()
+        q, visits = agent.q, agent.visits
+        for i, row, counts in zip(
+            id_list, self.q[ids].tolist(), self.visits[ids].tolist(), strict=True
+        ):
+            q[i][:] = row
+            visits[i][:] = counts
+        flags = self.li[ids].tolist()
+        base = self.strategy_base
+        if type(base) is AdaptiveEpsilon or type(base) is VDBE:
+            eps_table = base._epsilon
+            eps_values = self.lf[ids, k.LF_EPS].tolist()
+            if type(base) is AdaptiveEpsilon:
+                table = base._counts
+                for i, f, row, eps in zip(
+                    id_list, flags, self.counts[ids].tolist(), eps_values, strict=True
+                ):
+                    if f[k.L_COUNTS_HAS]:
+                        current = table.get(i)
+                        if current is None:
+                            table[i] = row
+                        else:
+                            current[:] = row
+                    if f[k.L_EPS_HAS]:
+                        eps_table[i] = eps
+            else:
+                for i, f, eps in zip(id_list, flags, eps_values, strict=True):
+                    if f[k.L_EPS_HAS]:
+                        eps_table[i] = eps
+        partition = agent.partition
+        if type(partition) is PartitionTree:
+            buffers = partition._buffers
+            dims, capacity = partition.dims, agent.config.split_min_samples
+            bufi, buff, bctr, bsum = self.bufi, self.buff, self.bctr, self.bsum
+            slots = self.li[ids, k.L_SLOT]
+            counters = bctr[slots].tolist()
+            for i, slot, (count, head, synced) in zip(
+                id_list, slots.tolist(), counters, strict=True
+            ):
+                if slot < 0 or head == synced:
+                    continue  # no buffer, or nothing appended since it was last written
+                buf = buffers.get(i)
+                if buf is None:
+                    buf = buffers[i] = ErrorBuffer(dims, capacity)
+                # the kernel appends without wrapping: copy what is new
+                inputs = np.frombuffer(buf.inputs, dtype=np.float64)
+                inputs[2 * synced : 2 * head] = bufi[slot, 2 * synced : 2 * head]
+                np.frombuffer(buf.errors, dtype=np.float64)[synced:head] = buff[slot, synced:head]
+                bctr[slot, 2] = head
+                buf.count, buf.head = count, head
+                buf.sum, buf.sum_sq = bsum[slot].tolist()
+        self.li[ids, k.L_DIRTY] = 0
+        self.li[ids, k.L_NEW] = 0
+
+    # -- plumbing ------------------------------------------------------------------------
+
+    def _args(self) -> tuple[Any, ...]:
+        """The kernel's arguments (rebuilt after any array was replaced)."""
+        if self._argtuple is None:
+            self._argtuple = self._build_args()
+        return self._argtuple
+
+    def _build_args(self) -> tuple[Any, ...]:
+        return tuple(getattr(self, name) for name in _ARGUMENT_ORDER)
+
+    def _dummy_arrays(self, k: Any) -> None:
+        """Arrays of the kernel's types for a call that returns at once (the warm-up)."""
+        self.st = np.zeros(k.N_INT, dtype=np.int64)
+        self.st[k.I_PHASE] = k.PH_DONE
+        self.fs = np.zeros(k.N_FLOAT, dtype=np.float64)
+        self.li = np.zeros((1, k.N_LI), dtype=np.int64)
+        self.lf = np.zeros((1, k.N_LF), dtype=np.float64)
+        self.q = np.zeros((1, 1), dtype=np.float64)
+        self.visits = self.counts = np.zeros((1, 1), dtype=np.int64)
+        self.fifo = np.zeros((1, 2), dtype=np.int64)
+        self.ubuf = self.rs = self.errs = np.zeros(1, dtype=np.float64)
+        self.grid_f = np.zeros((2, 2), dtype=np.float64)
+        self.grid_i = np.ones((2, 2), dtype=np.int64)
+        self.xs = np.zeros((1, 2), dtype=np.float64)
+        self.held = self.free = self.dirty = np.zeros(1, dtype=np.int64)
+        self.bufi = self.buff = np.zeros((1, 2), dtype=np.float64)
+        self.bctr = np.zeros((1, 3), dtype=np.int64)
+        self.bsum = np.zeros((1, 2), dtype=np.float64)
+        self.li = np.zeros((1, k.N_LI), dtype=np.int64)
+        self.moves = np.zeros((1, 2), dtype=np.float64)
+        self.noise = np.zeros(2, dtype=np.float64)
+        self.cells = np.zeros((1, 1), dtype=np.int64)
+        self.bounds_c = np.zeros((1, 2), dtype=np.float64)
+        self.bounds_r = np.zeros((1, 2), dtype=np.int64)
+        self.pieces = np.zeros((1, 3), dtype=np.float64)
+
+
+_ARGUMENT_ORDER = [
+    "st",
+    "fs",
+    "li",
+    "lf",
+    "q",
+    "visits",
+    "counts",
+    "fifo",
+    "ubuf",
+    "grid_f",
+    "grid_i",
+    "xs",
+    "rs",
+    "held",
+    "errs",
+    "bufi",
+    "buff",
+    "bctr",
+    "bsum",
+    "free",
+    "dirty",
+    "moves",
+    "noise",
+    "cells",
+    "bounds_c",
+    "bounds_r",
+    "pieces",
+]
+"""``fast_kernel.run_episode``'s parameters."""
+
+
+def _resized(array: np.ndarray, rows: int) -> np.ndarray:
+    """A copy of ``array`` with ``rows`` rows (the first ones kept, new ones zero)."""
+    out = np.zeros((rows, *array.shape[1:]), dtype=array.dtype)
+    keep = min(rows, array.shape[0])
+    out[:keep] = array[:keep]
+    return out
