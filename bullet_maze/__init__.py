@@ -4,6 +4,9 @@ Strategies for Reinforcement Learning", as a Gymnasium environment in headless p
 Importing the package registers ``BulletMaze-v0`` (keyword arguments ``maze``, ``robot``,
 ``mode``, ...) and one id per shipped layout, ``BulletMaze-<layout>-v0``; each is capped at
 5,000 steps by its ``max_episode_steps`` (section V.A).
+
+Layouts: ``load_layout`` (a name, a TOML file or a generator spec such as
+``"rooms:seed=3,door=30"``), ``generate_layout`` (the procedural families).
 """
 
 from __future__ import annotations
@@ -12,10 +15,19 @@ from gymnasium.envs.registration import register, registry
 
 from bullet_maze.actions import Action
 from bullet_maze.env import BulletMazeEnv
-from bullet_maze.layout import MazeLayout, Obstacle, Wall, available_layouts, load_layout
+from bullet_maze.generators import FAMILIES, generate_layout
+from bullet_maze.layout import (
+    MazeLayout,
+    Obstacle,
+    Wall,
+    available_layouts,
+    layout_to_toml,
+    load_layout,
+)
 from bullet_maze.params import MAX_EPISODE_STEPS, METRES_PER_UNIT, PhysicsParams, TaskParams
 from bullet_maze.planning import PhysicalLimit, shortest_path
 from bullet_maze.robots import HolonomicRobot, HuskyRobot, Robot
+from bullet_maze.validation import validate_layout
 
 ENTRY_POINT = "bullet_maze.env:BulletMazeEnv"
 
@@ -39,6 +51,7 @@ ENV_IDS = _register_ids()
 
 __all__ = [
     "ENV_IDS",
+    "FAMILIES",
     "MAX_EPISODE_STEPS",
     "METRES_PER_UNIT",
     "Action",
@@ -53,6 +66,9 @@ __all__ = [
     "TaskParams",
     "Wall",
     "available_layouts",
+    "generate_layout",
+    "layout_to_toml",
     "load_layout",
     "shortest_path",
+    "validate_layout",
 ]

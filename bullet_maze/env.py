@@ -24,6 +24,7 @@ from bullet_maze.params import MODES, PhysicsParams, TaskParams
 from bullet_maze.planning import PhysicalLimit, goal_reachable, shortest_path
 from bullet_maze.rendering import TopDownCamera
 from bullet_maze.robots import Robot, make_robot, wrap_angle
+from bullet_maze.validation import validate_layout
 from bullet_maze.world import CONTACT_TOLERANCE, World
 
 logger = logging.getLogger(__name__)
@@ -193,7 +194,7 @@ class BulletMazeEnv(gym.Env[np.ndarray, np.int64]):
         try:
             self.robot: Robot = self._make_robot(robot, robot_radius)
             if not math.isclose(self.robot.radius, self.layout.robot_radius, rel_tol=1e-6):
-                self.layout.validate(robot_radius=self.robot.radius)
+                validate_layout(self.layout, self.robot.radius)
             self.world = World(self._client, self.layout, self.robot.radius)
             self.physics = self._enough_substeps(self.physics)
             pb.setGravity(0.0, 0.0, -9.81, physicsClientId=self._client)
