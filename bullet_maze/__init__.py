@@ -6,7 +6,9 @@ Importing the package registers ``BulletMaze-v0`` (keyword arguments ``maze``, `
 5,000 steps by its ``max_episode_steps`` (section V.A).
 
 Layouts: ``load_layout`` (a name, a TOML file or a generator spec such as
-``"rooms:seed=3,door=30"``), ``generate_layout`` (the procedural families).
+``"rooms:seed=3,door=30"``), ``generate_layout`` (the procedural families),
+``layout_from_maze_map`` (a Gymnasium-Robotics / D4RL ``maze_map``), ``load_suite`` (named sets
+of layouts with a development and a test split).
 """
 
 from __future__ import annotations
@@ -24,9 +26,11 @@ from bullet_maze.layout import (
     layout_to_toml,
     load_layout,
 )
+from bullet_maze.maze_maps import layout_from_maze_map
 from bullet_maze.params import MAX_EPISODE_STEPS, METRES_PER_UNIT, PhysicsParams, TaskParams
 from bullet_maze.planning import PhysicalLimit, shortest_path
 from bullet_maze.robots import HolonomicRobot, HuskyRobot, Robot
+from bullet_maze.suites import LayoutSuite, available_suites, load_suite
 from bullet_maze.validation import validate_layout
 
 ENTRY_POINT = "bullet_maze.env:BulletMazeEnv"
@@ -58,6 +62,7 @@ __all__ = [
     "BulletMazeEnv",
     "HolonomicRobot",
     "HuskyRobot",
+    "LayoutSuite",
     "MazeLayout",
     "Obstacle",
     "PhysicalLimit",
@@ -66,9 +71,12 @@ __all__ = [
     "TaskParams",
     "Wall",
     "available_layouts",
+    "available_suites",
     "generate_layout",
+    "layout_from_maze_map",
     "layout_to_toml",
     "load_layout",
+    "load_suite",
     "shortest_path",
     "validate_layout",
 ]
