@@ -651,7 +651,9 @@ def _add_layouts_parser(sub: Any) -> None:
     layouts.add_argument(
         "mazes", nargs="*", metavar="MAZE", help="layout names, files or generator specs"
     )
-    layouts.add_argument("--suite", metavar="NAME", help="draw a layout suite (assets/suites/)")
+    layouts.add_argument(
+        "--suite", metavar="NAME", help="draw a layout suite (a name in assets/suites/ or a file)"
+    )
     layouts.add_argument("--split", choices=("dev", "test"), help="only this split of the suite")
     layouts.add_argument(
         "--out", type=Path, default=Path("layouts.png"), metavar="FILE", help="PNG to write"

@@ -41,6 +41,9 @@ from bullet_maze.validation import validate_layout
 DEFAULT_LAYOUT = "paper"
 """The layout of ``BulletMaze-v0``: section V.A's maze as closely as its text allows."""
 
+MAX_SPEC_LENGTH = 1000
+"""Longest string ``load_layout`` takes (a name, a path or a generator spec)."""
+
 _SCHEMA: dict[str, dict[str, bool]] = {
     "": {
         "name": False,
@@ -89,6 +92,8 @@ def load_layout(maze: str | Path | MazeLayout) -> MazeLayout:
             "maze must be a layout name, a path, a generator spec or a MazeLayout, "
             f"got {type(maze).__name__}"
         )
+    if len(maze) > MAX_SPEC_LENGTH:
+        raise ValueError(f"maze {_show(maze)}: longer than {MAX_SPEC_LENGTH:,} characters")
     if maze.endswith(".toml"):
         return _load_file(Path(maze))
     if is_generator_spec(maze):
@@ -136,9 +141,13 @@ def _load_file(path: Path) -> MazeLayout:
 def read_toml(path: Path, what: str = "maze") -> dict[str, Any]:
     """A TOML file's document; every failure a ``ValueError`` or ``FileNotFoundError`` naming
     the file (too large, not UTF-8, not TOML, nested too deeply)."""
-    if not path.is_file():
+    try:
+        found = path.is_file()
+        size = path.stat().st_size if found else 0
+    except OSError as err:  # e.g. a name too long for the file system
+        raise ValueError(f"{what} file {_show(str(path))}: {err.strerror}") from None
+    if not found:
         raise FileNotFoundError(f"{what} file not found: {path}")
-    size = path.stat().st_size
     if size > MAX_LAYOUT_FILE_BYTES:
         raise ValueError(
             f"{path}: {size:,} bytes, more than the {MAX_LAYOUT_FILE_BYTES:,} a {what} file may "

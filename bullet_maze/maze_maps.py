@@ -129,6 +129,11 @@ def layout_from_maze_map(
     start = _pick(grid, start_cell, (_R,), (_C,), "start", source, exclude=goal)
     if start is None:
         start = _farthest(grid, goal)
+        if start == goal:
+            raise ValueError(
+                f"{source}: no free cell connects to the goal cell {goal}: give "
+                "start_cell=(row, column)"
+            )
     walls = [
         Wall(
             (((j0 + j1 + 1) / 2) * cell, (n_rows - (i0 + i1 + 1) / 2) * cell),
