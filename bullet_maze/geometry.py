@@ -181,6 +181,59 @@ def _spatial_order(layout: MazeLayout, points: np.ndarray) -> np.ndarray:
     return np.argsort(tiles[:, 1] * 64 + tiles[:, 0], kind="stable")
 
 
+def _point_segment(
+    px: np.ndarray, py: np.ndarray, starts: np.ndarray, delta: np.ndarray
+) -> np.ndarray:
+    """Distance from points (px, py) to the segments ``starts + t * delta``, t in [0, 1]."""
+    dx, dy = delta[:, 0], delta[:, 1]
+    length2 = dx * dx + dy * dy
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = ((px - starts[:, 0]) * dx + (py - starts[:, 1]) * dy) / length2
+    t = np.clip(np.where(length2 > 0.0, t, 0.0), 0.0, 1.0)
+    return np.hypot(px - (starts[:, 0] + t * dx), py - (starts[:, 1] + t * dy))
+
+
+def _segment_distance(
+    solids: SolidArrays, k: np.ndarray, starts: np.ndarray, delta: np.ndarray
+) -> np.ndarray:
+    """Exact distance from each segment ``starts[i] + t * delta[i]`` to solid ``k[i]``: to a
+    disc, its centre's distance minus the radius; to a box, 0 if the segment meets it, else the
+    least of its ends' distances to the box and the box's corners' to the segment (two disjoint
+    convex polygons are closest at a vertex of one of them)."""
+    cx, cy = solids.center[k, 0], solids.center[k, 1]
+    hx, hy = solids.half[k, 0], solids.half[k, 1]
+    result = _point_segment(cx, cy, starts, delta) - hx
+    box = solids.kind[k] == 1
+    if not box.any():
+        return result
+    cx, cy, hx, hy = cx[box], cy[box], hx[box], hy[box]
+    a, d = starts[box], delta[box]
+    b = a + d
+    ends = np.minimum(
+        _box_distance(a[:, 0], a[:, 1], cx, cy, hx, hy),
+        _box_distance(b[:, 0], b[:, 1], cx, cy, hx, hy),
+    )
+    corners = np.min(
+        [
+            _point_segment(cx + sx * hx, cy + sy * hy, a, d)
+            for sx, sy in ((-1, -1), (-1, 1), (1, -1), (1, 1))
+        ],
+        axis=0,
+    )
+    # The segment meets the box iff clipping it to the box leaves an interval.
+    t0, t1 = np.zeros(len(a)), np.ones(len(a))
+    for axis, (c, h) in enumerate(((cx, hx), (cy, hy))):
+        p, v = a[:, axis], d[:, axis]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ta, tb = (c - h - p) / v, (c + h - p) / v
+        inside = np.abs(p - c) <= h
+        still = v == 0.0
+        t0 = np.maximum(t0, np.where(still, np.where(inside, 0.0, np.inf), np.minimum(ta, tb)))
+        t1 = np.minimum(t1, np.where(still, np.where(inside, 1.0, -np.inf), np.maximum(ta, tb)))
+    result[box] = np.where(t0 <= t1, -np.inf, np.minimum(ends, corners))
+    return result
+
+
 def _blocked(
     solids: SolidArrays, starts: np.ndarray, delta: np.ndarray, t: np.ndarray, limit: float
 ) -> np.ndarray:
@@ -214,6 +267,9 @@ def _blocked(
         leave = np.where(still, np.where(inside, 1.0, -np.inf), np.maximum(ta, tb))
         t0, t1 = np.maximum(t0, enter), np.minimum(t1, leave)
     seg, col = np.nonzero(t0 <= t1)
+    # A pair whose exact distance clears the limit (with room for rounding) needs no samples.
+    close = _segment_distance(solids, near[col], starts[seg], delta[seg]) < reach
+    seg, col = seg[close], col[close]
     if seg.size == 0:
         return blocked
     last = len(t) - 1

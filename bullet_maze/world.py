@@ -73,10 +73,6 @@ class _Piece(NamedTuple):
     radius: float
     colour: str
 
-    def bounds(self) -> tuple[float, float, float, float]:
-        hx, hy = (self.radius, self.radius) if self.radius else (self.size[0] / 2, self.size[1] / 2)
-        return (self.center[0] - hx, self.center[1] - hy, self.center[0] + hx, self.center[1] + hy)
-
 
 class World:
     """A layout's bodies in the pybullet client ``client``; see the module docstring."""
@@ -85,11 +81,9 @@ class World:
         self.client = client
         self.layout = layout
         self.robot_radius = robot_radius
-        self.solid_ids, bounds = self._build_solids()
+        self.solid_ids = self._build_solids()
         self._solid_set = frozenset(self.solid_ids)
         self._single = self.solid_ids[0] if len(self.solid_ids) == 1 else None
-        # Each body's bounding box widened by the probe's radius, in maze units (x0, y0, x1, y1).
-        self._bounds = np.array(bounds).reshape(-1, 4) + np.array([-1, -1, 1, 1]) * robot_radius
         self.ground_id = self._build_ground()
         self._build_markers()
         self.probe_id = self._build_probe(robot_radius)
@@ -130,21 +124,15 @@ class World:
         ]
         return arena + walls + obstacles
 
-    def _build_solids(self) -> tuple[list[int], list[tuple[float, float, float, float]]]:
-        """The solid bodies and their bounding boxes: one compound when every piece fits in one
-        (boxes first, as ``_pieces`` orders them), else the four arena walls one body each and
-        the rest in compounds of nearby pieces."""
+    def _build_solids(self) -> list[int]:
+        """The solid bodies: one compound when every piece fits in one (boxes first, as
+        ``_pieces`` orders them), else the four arena walls one body each and the rest in
+        compounds of nearby pieces."""
         pieces = self._pieces()
         if len(pieces) <= COMPOUND_CHILDREN:
-            groups = [pieces]
-        else:
-            groups = [[piece] for piece in pieces[:4]] + _nearby_groups(pieces[4:])
-        ids, bounds = [], []
-        for group in groups:
-            ids.append(self._build_compound(group))
-            boxes = np.array([piece.bounds() for piece in group])
-            bounds.append((*boxes[:, :2].min(axis=0), *boxes[:, 2:].max(axis=0)))
-        return ids, bounds
+            return [self._build_compound(pieces)]
+        groups = [[piece] for piece in pieces[:4]] + _nearby_groups(pieces[4:])
+        return [self._build_compound(group) for group in groups]
 
     def _build_compound(self, pieces: list[_Piece]) -> int:
         s, c = METRES_PER_UNIT, self.client
@@ -362,25 +350,23 @@ class World:
     def _closest(self, x: float, y: float, reach: float) -> list[tuple]:
         """pybullet's closest points between the footprint at (x, y) and every solid piece
         within ``reach`` (plus the tolerance). With several solid bodies, only those whose
-        bounding box lies within that reach are asked (the others are farther)."""
+        broadphase bounding box (which holds the body) meets the square of that reach around
+        the footprint are asked: the others are farther."""
         self.place_probe(x, y)
-        far = (reach + CONTACT_TOLERANCE) * METRES_PER_UNIT
+        s, c = METRES_PER_UNIT, self.client
+        far = (reach + CONTACT_TOLERANCE) * s
         if self._single is not None:
-            return pb.getClosestPoints(
-                self.probe_id, self._single, far, physicsClientId=self.client
-            )
-        e = reach + 2 * CONTACT_TOLERANCE
-        b = self._bounds
-        near = np.flatnonzero(
-            (b[:, 0] <= x + e) & (b[:, 2] >= x - e) & (b[:, 1] <= y + e) & (b[:, 3] >= y - e)
+            return pb.getClosestPoints(self.probe_id, self._single, far, physicsClientId=c)
+        e = (reach + self.robot_radius + 2 * CONTACT_TOLERANCE) * s
+        top = WALL_HEIGHT * s
+        near = pb.getOverlappingObjects(
+            (x * s - e, y * s - e, -top), (x * s + e, y * s + e, 2 * top), physicsClientId=c
         )
         points: list[tuple] = []
-        for index in near.tolist():
-            points.extend(
-                pb.getClosestPoints(
-                    self.probe_id, self.solid_ids[index], far, physicsClientId=self.client
-                )
-            )
+        solids = self._solid_set
+        for body, _ in near or ():
+            if body in solids:
+                points.extend(pb.getClosestPoints(self.probe_id, body, far, physicsClientId=c))
         return points
 
     def touching(self, body_id: int) -> bool:
