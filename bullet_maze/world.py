@@ -169,7 +169,10 @@ class World:
             visualFramePositions=positions,
             physicsClientId=c,
         )
-        return pb.createMultiBody(0.0, shape, visual, physicsClientId=c)
+        # A static rigid body, not a fixed-base multibody: pybullet then leaves it out of every
+        # physics step's multibody updates (the dynamic step with 68 compounds runs 2.5x faster;
+        # with one compound the rollouts are bit-identical either way).
+        return pb.createMultiBody(0.0, shape, visual, useMaximalCoordinates=True, physicsClientId=c)
 
     def _build_markers(self) -> None:
         s, c, layout = METRES_PER_UNIT, self.client, self.layout
