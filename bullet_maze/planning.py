@@ -200,6 +200,13 @@ class _Grid:
     """Free cells of a square grid over the arena for a disc of a given radius."""
 
     def __init__(self, layout: MazeLayout, radius: float, resolution: float) -> None:
+        if not resolution * math.sqrt(2.0) < 2.0 * radius:
+            # Two free nodes a diagonal apart could then straddle a thin wall.
+            raise ValueError(
+                f"{layout.source}: a robot of radius {radius:g} is too small for the planning "
+                f"grid of cell {resolution:.3g} in a {layout.arena[0]:g} x {layout.arena[1]:g} "
+                "arena (bullet_maze.params.MAX_PLANNER_NODES)"
+            )
         self.layout = layout
         self.h = resolution
         self.nx = math.floor(layout.arena[0] / resolution) + 1

@@ -172,3 +172,12 @@ def test_a_layout_made_in_python_is_checked_too(change: dict[str, object], match
     _layout_error(layout, match)
     with pytest.raises(ValueError, match=match):
         load_layout(layout)
+
+
+def test_the_planner_refuses_a_robot_its_grid_cannot_resolve() -> None:
+    # The grid's cell in a 300 x 300 arena is at least 0.474: two free nodes a diagonal apart
+    # could straddle a thin wall for a robot of radius 0.2.
+    layout = load_layout("paper")
+    with pytest.raises(ValueError, match=r"radius 0\.2 is too small for the planning grid"):
+        shortest_path(layout, robot_radius=0.2)
+    assert shortest_path(layout, robot_radius=0.4).steps > 0
