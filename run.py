@@ -8,6 +8,7 @@ summary and a results folder (per-episode CSV, learning curve, learned partition
     python run.py experiment CONFIG [--runs N] ...          strategies x runs, with a report
     python run.py evaluate AGENT [--mode dynamic --robot husky]
     python run.py render AGENT                              a GIF of one greedy episode
+    python run.py layouts MAZE... | --suite NAME            layouts and shortest paths (PNG)
 
 ``python run.py SUBCOMMAND --help`` explains every option; docs/experiments.md the config files.
 """
@@ -242,6 +243,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     _add_config_source(render)
     _add_env_options(render)
+    _add_layouts_parser(sub)
     return parser
 
 
@@ -639,12 +641,49 @@ def cmd_render(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_layouts_parser(sub: Any) -> None:
+    layouts = sub.add_parser(
+        "layouts",
+        help="draw layouts (or a suite) with start, goal and shortest path as a PNG",
+        description="Write a contact sheet of maze layouts: each with its start square, goal "
+        "circle, shortest collision-free path and least number of steps.",
+    )
+    layouts.add_argument(
+        "mazes", nargs="*", metavar="MAZE", help="layout names, files or generator specs"
+    )
+    layouts.add_argument(
+        "--suite", metavar="NAME", help="draw a layout suite (a name in assets/suites/ or a file)"
+    )
+    layouts.add_argument("--split", choices=("dev", "test"), help="only this split of the suite")
+    layouts.add_argument(
+        "--out", type=Path, default=Path("layouts.png"), metavar="FILE", help="PNG to write"
+    )
+
+
+def cmd_layouts(args: argparse.Namespace) -> int:
+    """A contact sheet of layouts (``experiments.layout_sheet``)."""
+    from experiments.layout_sheet import layout_sheet, suite_sheet
+
+    if bool(args.mazes) == bool(args.suite) or (args.split and not args.suite):
+        raise ConfigError("layouts: give MAZE names or --suite NAME (--split goes with --suite)")
+    try:
+        if args.suite:
+            path = suite_sheet(args.suite, args.out, args.split)
+        else:
+            path = layout_sheet(args.mazes, args.out)
+    except (TypeError, ValueError) as error:
+        raise ConfigError(str(error)) from None
+    print(f"wrote {path}")
+    return 0
+
+
 COMMANDS = {
     "default": cmd_default,
     "train": cmd_train,
     "experiment": cmd_experiment,
     "evaluate": cmd_evaluate,
     "render": cmd_render,
+    "layouts": cmd_layouts,
 }
 
 

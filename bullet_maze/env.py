@@ -37,6 +37,7 @@ from bullet_maze.robots import (
 )
 from bullet_maze.robots.drives import facing
 from bullet_maze.sensors import Lidar, LidarParams
+from bullet_maze.validation import validate_layout
 from bullet_maze.world import CELL, CELL_REACH, CONTACT_TOLERANCE, World
 
 logger = logging.getLogger(__name__)
@@ -49,9 +50,6 @@ OBSERVATIONS = ("pose", "lidar", "goal", "goal+lidar")
 
 PARAMS = (TaskParams, PhysicsParams, ActionParams, LidarParams)
 """The dataclasses whose fields are the env's keyword parameters; each default lives there."""
-
-MAX_RENDER_SIZE = 4096
-"""Largest image side in pixels (pybullet's TinyRenderer allocates the frame at once)."""
 
 _FAST_ACTION_TYPES = frozenset((int, np.int64))
 """Action types ``step`` looks up without conversion (``bool`` is not one: it is refused)."""
@@ -252,11 +250,6 @@ class BulletMazeEnv(gym.Env[Any, Any]):
                 raise TypeError(f"robot_radius must be a number, got {robot_radius!r}")
             if not 0 < robot_radius < math.inf:
                 raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
-        for name, size in (("render_width", render_width), ("render_height", render_height)):
-            if isinstance(size, bool) or not isinstance(size, int):
-                raise TypeError(f"{name} must be an integer number of pixels, got {size!r}")
-            if not 0 < size <= MAX_RENDER_SIZE:
-                raise ValueError(f"{name} must be in [1, {MAX_RENDER_SIZE}], got {size}")
         spec = resolve_robot(robot)
         task, physics, action_params, lidar_params = _split_params(params, spec)
         self.task, self.physics = task, physics
@@ -275,7 +268,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
                 actions, self.robot, task.step_size, action_params.control_period
             )
             if not math.isclose(self.robot.radius, self.layout.robot_radius, rel_tol=1e-6):
-                self.layout.validate(robot_radius=self.robot.radius)
+                validate_layout(self.layout, self.robot.radius)
             self.world = World(self._client, self.layout, self.robot.radius)
             self.lidar = (
                 Lidar(self._client, lidar_params, self.robot.radius)

@@ -28,6 +28,55 @@ BOUNDARY_THICKNESS = 10.0
 MODES = ("kinematic", "dynamic")
 """Actuation modes: ``kinematic`` is the paper's exact step, ``dynamic`` runs physics substeps."""
 
+# Bounds: every size that could exhaust memory or time has one, checked where it is given (the
+# layout file, the generator's parameters, the env's arguments) with a ValueError that names it.
+
+MAX_ARENA_SIDE = 2000.0
+"""Longest arena side in maze units (200 m). The simulation's per-cell collision cache holds at
+most (side / 5)^2 entries, and the physical limit's grid at most ``MAX_PLANNER_NODES`` nodes."""
+
+MAX_SOLIDS = 4000
+"""Most walls and obstacles in one layout. Building the world, planning and rendering grow with
+the count (``docs/benchmarks.md``, section *Layouts at scale*); a kinematic step does not."""
+
+MIN_SOLID_SIZE = 0.01
+"""Least wall side and obstacle radius in maze units (1 mm): thinner shapes are degenerate for
+pybullet's collision detection."""
+
+MAX_PLANNER_NODES = 400_000
+"""Most nodes of the physical limit's grid (``bullet_maze.planning``): about 0.5 s and 120 MB.
+The grid's cell is 0.5 units or finer where the robot and goal need it, and coarser in arenas
+larger than about 316 x 316, where the cell is ``sqrt(width * height / MAX_PLANNER_NODES)``."""
+
+MIN_ROBOT_RADIUS = 0.1
+"""Least robot radius in maze units (1 cm). Radii must also be at least the planning grid's
+coarsest cell, ``sqrt(width * height / MAX_PLANNER_NODES)``, so that the grid resolves the robot
+and the goal circle (0.47 units in a 300 x 300 arena, 1.58 in 1,000 x 1,000)."""
+
+MAX_LAYOUT_FILE_BYTES = 4_000_000
+"""Largest layout or suite file read (4 MB; a layout of ``MAX_SOLIDS`` solids takes about
+250 KB)."""
+
+MAX_RENDER_SIDE = 2048
+"""Largest rendered image side in pixels: a 2,048 x 2,048 TinyRenderer image takes about 1 s
+and 260 MB (pybullet aborts the process at 100,000 and crashes at 20,000)."""
+
+MAX_STEP_SIZE = 100.0
+"""Longest nominal move of one action in maze units (20 steps of the paper's 5.0)."""
+
+MAX_NOISE_VARIANCE = 100.0
+"""Largest per-axis noise variance (standard deviation 10 maze units, two of the paper's steps)."""
+
+MAX_SUBSTEPS = 10_000
+"""Most physics steps per env step (``substeps``, ``max_turn_substeps``,
+``max_drive_substeps``): a husky step of 10,000 physics steps takes about half a second."""
+
+MAX_SOLVER_ITERATIONS = 1000
+"""Most constraint-solver iterations per physics step (pybullet's default is 50)."""
+
+MIN_TIME_STEP = 1e-4
+"""Shortest physics time step in seconds (10 kHz); the longest is 0.1 s."""
+
 
 @dataclass(frozen=True)
 class TaskParams:
@@ -53,12 +102,26 @@ class TaskParams:
             "step_reward",
         ):
             value = getattr(self, name)
-            if not isinstance(value, int | float) or not math.isfinite(value):
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, int | float)
+                or not math.isfinite(value)
+            ):
                 raise ValueError(f"{name} must be a finite number, got {value!r}")
         if self.step_size <= 0:
-            raise ValueError(f"step_size must be positive, got {self.step_size}")
+            raise ValueError(f"step_size must be positive, got {self.step_size!r}")
+        if self.step_size > MAX_STEP_SIZE:
+            raise ValueError(
+                f"step_size must be at most {MAX_STEP_SIZE:g} maze units "
+                f"(bullet_maze.params.MAX_STEP_SIZE), got {self.step_size!r}"
+            )
         if self.noise_variance < 0:
-            raise ValueError(f"noise_variance must be >= 0, got {self.noise_variance}")
+            raise ValueError(f"noise_variance must be >= 0, got {self.noise_variance!r}")
+        if self.noise_variance > MAX_NOISE_VARIANCE:
+            raise ValueError(
+                f"noise_variance must be at most {MAX_NOISE_VARIANCE:g} "
+                f"(bullet_maze.params.MAX_NOISE_VARIANCE), got {self.noise_variance!r}"
+            )
 
     @property
     def noise_std(self) -> float:
@@ -89,11 +152,22 @@ class PhysicsParams:
     """Upper bound on the physics steps a wheeled robot may spend driving one step."""
 
     def __post_init__(self) -> None:
-        if not (isinstance(self.time_step, int | float) and 0 < self.time_step <= 0.1):
-            raise ValueError(f"time_step must be in (0, 0.1] seconds, got {self.time_step!r}")
+        if not (
+            isinstance(self.time_step, int | float)
+            and not isinstance(self.time_step, bool)
+            and MIN_TIME_STEP <= self.time_step <= 0.1
+        ):
+            raise ValueError(
+                f"time_step must be in [{MIN_TIME_STEP:g}, 0.1] seconds, got {self.time_step!r}"
+            )
         for name in ("substeps", "solver_iterations", "max_turn_substeps", "max_drive_substeps"):
             value = getattr(self, name)
             if not isinstance(value, int) or isinstance(value, bool) or value < 1:
                 raise ValueError(f"{name} must be a positive integer, got {value!r}")
+            bound = MAX_SOLVER_ITERATIONS if name == "solver_iterations" else MAX_SUBSTEPS
+            if value > bound:
+                raise ValueError(
+                    f"{name} must be at most {bound:,} (bullet_maze.params), got {value!r}"
+                )
         if not isinstance(self.revert_on_collision, bool):
             raise TypeError(f"revert_on_collision must be a bool, got {self.revert_on_collision!r}")

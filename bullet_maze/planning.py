@@ -14,6 +14,12 @@ For a robot disc of a given radius, ``shortest_path`` gives
   It can exceed ``steps`` when the lattice does not line up with a gap.
 
 Section V.A's steps carry noise, so a learner can only approach these on average.
+
+The grid's cell is 0.5 units (finer if the goal or the robot is small) while the grid has at
+most ``params.MAX_PLANNER_NODES`` nodes, and ``coarsest_cell(arena)`` in larger arenas, so that
+time and memory stay bounded (about 0.5 s and 120 MB); lengths are exact to within about a cell.
+The solids are only evaluated near themselves (``geometry.clearance_mask``,
+``geometry.segments_clear``), so hundreds of solids cost little more than a few.
 """
 
 from __future__ import annotations
@@ -23,17 +29,16 @@ import itertools
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import breadth_first_order, connected_components, dijkstra
+from scipy import ndimage
+from scipy.sparse import coo_matrix, csr_matrix
+from scipy.sparse.csgraph import breadth_first_order, dijkstra
 
 from bullet_maze.actions import DIRECTIONS
-from bullet_maze.geometry import clearance, segment_clearance
-
-if TYPE_CHECKING:
-    from bullet_maze.layout import MazeLayout
+from bullet_maze.geometry import clearance_mask, segments_clear
+from bullet_maze.layout_types import MazeLayout
+from bullet_maze.params import MAX_PLANNER_NODES
 
 CLEARANCE_TOLERANCE = 0.01
 """Extra clearance (maze units) that planned paths keep from every surface, above the
@@ -41,7 +46,11 @@ simulation's contact tolerance (``world.CONTACT_TOLERANCE``), so that the simula
 them."""
 
 GRID_RESOLUTION = 0.5
-"""Cell size in maze units of the planning grid."""
+"""Cell size in maze units of the planning grid in arenas up to about 316 x 316."""
+
+_NEIGHBOURS = ((-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1))
+"""The 8 neighbour offsets (di, dj) of a grid node, in increasing order of the neighbour's index
+(``i * ny + j``), as a canonical sparse matrix holds them."""
 
 
 @dataclass(frozen=True)
@@ -73,9 +82,9 @@ def goal_reachable(
     """Whether a disc of ``robot_radius`` can move from ``start`` into the goal circle around
     ``goal`` (by default the layout's own; the circle has the layout's goal radius).
 
-    Decided on a grid of cells no larger than half the radius: a gap that leaves the robot's
-    centre a band narrower than one cell may be missed (reported unreachable). The grid's
-    connected free regions depend only on the layout's solids and the radius and are kept
+    Decided on the physical limit's grid (``grid_cell``): a gap that leaves the robot's centre
+    a band narrower than one cell may be missed (reported unreachable). The grid's connected
+    free regions depend only on the layout's solids and the radius and are kept
     (``_free_regions``), so another start or goal in the same layout costs a lookup.
     """
     regions = _free_regions(_solids(layout), float(robot_radius))
@@ -106,7 +115,8 @@ class _Regions:
 
     def __init__(self, grid: _Grid) -> None:
         self.grid = grid
-        _, self.labels = connected_components(grid.edges(diagonal=False), directed=False)
+        labels, _ = ndimage.label(grid.free)
+        self.labels = labels.ravel()
 
     def connects(
         self, start: tuple[float, float], goal: tuple[float, float], goal_radius: float
@@ -121,8 +131,20 @@ class _Regions:
 
 @lru_cache(maxsize=8)
 def _free_regions(solids: MazeLayout, radius: float) -> _Regions:
-    resolution = min(2 * GRID_RESOLUTION, radius / 2.0, solids.goal_radius / 2.0)
-    return _Regions(_Grid(solids, radius, resolution))
+    return _Regions(_Grid(solids, radius, grid_cell(solids, radius)))
+
+
+def coarsest_cell(arena: tuple[float, float]) -> float:
+    """The grid cell (maze units) at which the arena's grid has ``MAX_PLANNER_NODES`` nodes;
+    robot and goal radii must be at least this (``bullet_maze.validation``)."""
+    return math.sqrt(arena[0] * arena[1] / MAX_PLANNER_NODES)
+
+
+def grid_cell(layout: MazeLayout, robot_radius: float) -> float:
+    """The planning grid's cell: 0.5 units, or less for a goal radius under 1 or a robot radius
+    under 1, but never finer than ``coarsest_cell``."""
+    fine = min(GRID_RESOLUTION, layout.goal_radius / 2.0, robot_radius / 2.0)
+    return max(fine, coarsest_cell(layout.arena))
 
 
 def shortest_path(
@@ -137,12 +159,14 @@ def shortest_path(
 def _shortest_path(layout: MazeLayout, radius: float, step_size: float) -> PhysicalLimit:
     if radius <= 0 or step_size <= 0:
         raise ValueError(f"robot_radius and step_size must be positive, got {radius}, {step_size}")
-    grid = _Grid(layout, radius, _resolution(layout))
+    grid = _Grid(layout, radius, grid_cell(layout, radius))
     start = grid.start_node(layout.start)
     goals = grid.goal_nodes(layout.goal, layout.goal_radius)
     if start is None or goals.size == 0:
         raise ValueError(f"{layout.source}: no free start or goal for radius {radius}")
-    dist, pred = dijkstra(grid.edges(diagonal=True), indices=start, return_predecessors=True)
+    graph = grid.edges(diagonal=True)
+    dist, pred = dijkstra(graph, indices=start, return_predecessors=True)
+    del graph
     best = goals[np.argmin(dist[goals])]
     if not np.isfinite(dist[best]):
         raise ValueError(f"{layout.source}: goal unreachable for radius {radius}")
@@ -172,43 +196,50 @@ def _shortest_path(layout: MazeLayout, radius: float, step_size: float) -> Physi
     )
 
 
-def _resolution(layout: MazeLayout) -> float:
-    return min(GRID_RESOLUTION, layout.goal_radius / 2.0)
-
-
 class _Grid:
     """Free cells of a square grid over the arena for a disc of a given radius."""
 
     def __init__(self, layout: MazeLayout, radius: float, resolution: float) -> None:
+        if not resolution * math.sqrt(2.0) < 2.0 * radius:
+            # Two free nodes a diagonal apart could then straddle a thin wall.
+            raise ValueError(
+                f"{layout.source}: a robot of radius {radius:g} is too small for the planning "
+                f"grid of cell {resolution:.3g} in a {layout.arena[0]:g} x {layout.arena[1]:g} "
+                "arena (bullet_maze.params.MAX_PLANNER_NODES)"
+            )
         self.layout = layout
         self.h = resolution
         self.nx = math.floor(layout.arena[0] / resolution) + 1
         self.ny = math.floor(layout.arena[1] / resolution) + 1
-        xs = np.arange(self.nx) * resolution
-        ys = np.arange(self.ny) * resolution
-        self.xy = np.stack(np.meshgrid(xs, ys, indexing="ij"), axis=-1)
+        self.xs = np.arange(self.nx) * resolution
+        self.ys = np.arange(self.ny) * resolution
         self.limit = radius + CLEARANCE_TOLERANCE
-        self.free = clearance(layout, self.xy) >= self.limit
+        self.free = clearance_mask(layout, self.xs, self.ys, self.limit)
 
     def points(self, nodes: np.ndarray) -> np.ndarray:
         i, j = np.divmod(nodes, self.ny)
         return np.stack([i * self.h, j * self.h], axis=-1).astype(float)
 
-    def edges(self, diagonal: bool) -> coo_matrix:
-        offsets = [(1, 0), (0, 1)] + ([(1, 1), (1, -1)] if diagonal else [])
-        index = np.arange(self.nx * self.ny).reshape(self.nx, self.ny)
-        rows, cols, weights = [], [], []
-        for di, dj in offsets:
-            a = (slice(0, self.nx - di), slice(max(0, -dj), self.ny - max(0, dj)))
-            b = (slice(di, self.nx), slice(max(0, dj), self.ny - max(0, -dj) or None))
-            # Neighbours are closer than the robot's diameter, so two free nodes bound a free edge.
-            ok = self.free[a] & self.free[b]
-            rows.append(index[a][ok])
-            cols.append(index[b][ok])
-            weights.append(np.full(int(ok.sum()), self.h * math.hypot(di, dj)))
-        n = self.nx * self.ny
-        r, c, w = np.concatenate(rows), np.concatenate(cols), np.concatenate(weights)
-        return coo_matrix((np.r_[w, w], (np.r_[r, c], np.r_[c, r])), shape=(n, n)).tocsr()
+    def edges(self, diagonal: bool) -> csr_matrix:
+        """The symmetric graph of moves between free neighbours (4- or 8-connected), weighted by
+        length, built row by row in canonical order (sorted column indices)."""
+        # Neighbours are closer than the robot's diameter (validation bounds the cell by the
+        # radius), so two free nodes bound a free edge.
+        offsets = [o for o in _NEIGHBOURS if diagonal or 0 in o]
+        nx, ny, n = self.nx, self.ny, self.nx * self.ny
+        padded = np.zeros((nx + 2, ny + 2), dtype=bool)
+        padded[1:-1, 1:-1] = self.free
+        valid = np.stack(
+            [self.free & padded[1 + di : 1 + di + nx, 1 + dj : 1 + dj + ny] for di, dj in offsets],
+            axis=-1,
+        ).reshape(n, len(offsets))
+        step = np.array([di * ny + dj for di, dj in offsets], dtype=np.int32)
+        weight = np.array([self.h * math.hypot(di, dj) for di, dj in offsets])
+        rows = np.nonzero(valid)
+        indices = (rows[0].astype(np.int32) + step[rows[1]]).astype(np.int32)
+        indptr = np.zeros(n + 1, dtype=np.int32)
+        np.cumsum(valid.sum(axis=1), out=indptr[1:])
+        return csr_matrix((weight[rows[1]], indices, indptr), shape=(n, n))
 
     def start_node(self, start: tuple[float, float]) -> int | None:
         """The free node nearest ``start`` among the four around it, if any."""
@@ -232,8 +263,7 @@ class _Grid:
         j1 = min(self.ny, math.ceil((gy + radius) / self.h) + 2)
         if i0 >= i1 or j0 >= j1:
             return np.zeros(0, dtype=np.int64)
-        box = self.xy[i0:i1, j0:j1]
-        inside = np.hypot(box[..., 0] - gx, box[..., 1] - gy) <= radius
+        inside = np.hypot(self.xs[i0:i1, None] - gx, self.ys[None, j0:j1] - gy) <= radius
         ii, jj = np.nonzero(inside & self.free[i0:i1, j0:j1])
         return (ii + i0) * self.ny + (jj + j0)
 
@@ -249,7 +279,7 @@ def _pull_taut(layout: MazeLayout, points: np.ndarray, limit: float) -> np.ndarr
             ends = points[first : first + chunk]
             starts = np.broadcast_to(points[anchor], ends.shape)
             # Sampled every 0.1 unit: a segment may dip at most 0.05 below the limit between.
-            visible = segment_clearance(layout, starts, ends, spacing) >= limit
+            visible = segments_clear(layout, starts, ends, spacing, limit)
             blocked = np.flatnonzero(~visible)
             if blocked.size:
                 step = max(1, first + int(blocked[0]) - 1 - anchor)
@@ -284,19 +314,22 @@ def _lattice_steps(
     w, h = layout.arena
     i_lo, i_hi = -math.floor(sx / step_size), math.floor((w - sx) / step_size)
     j_lo, j_hi = -math.floor(sy / step_size), math.floor((h - sy) / step_size)
-    ii, jj = np.meshgrid(np.arange(i_lo, i_hi + 1), np.arange(j_lo, j_hi + 1), indexing="ij")
-    pts = np.stack([sx + ii * step_size, sy + jj * step_size], axis=-1)
-    nx, ny = ii.shape
+    nx, ny = i_hi - i_lo + 1, j_hi - j_lo + 1
+    if nx * ny > MAX_PLANNER_NODES:
+        return None, ()
+    xs = sx + np.arange(i_lo, i_hi + 1) * step_size
+    ys = sy + np.arange(j_lo, j_hi + 1) * step_size
+    pts = np.stack(np.meshgrid(xs, ys, indexing="ij"), axis=-1)
     index = np.arange(nx * ny).reshape(nx, ny)
     limit = radius + CLEARANCE_TOLERANCE
     spacing = 0.25
-    free = clearance(layout, pts) >= limit
+    free = clearance_mask(layout, xs, ys, limit)
     rows, cols = [], []
     for di, dj in ((1, 0), (0, 1)):
         a = (slice(0, nx - di), slice(0, ny - dj))
         b = (slice(di, nx), slice(dj, ny))
         ok = free[a] & free[b]
-        seg_ok = segment_clearance(layout, pts[a][ok], pts[b][ok], spacing) >= (limit + spacing / 2)
+        seg_ok = segments_clear(layout, pts[a][ok], pts[b][ok], spacing, limit + spacing / 2)
         rows.append(index[a][ok][seg_ok])
         cols.append(index[b][ok][seg_ok])
     r, c = np.concatenate(rows), np.concatenate(cols)

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pybullet as pb
 
-from bullet_maze.params import BOUNDARY_THICKNESS, METRES_PER_UNIT, WALL_HEIGHT
+from bullet_maze.params import BOUNDARY_THICKNESS, MAX_RENDER_SIDE, METRES_PER_UNIT, WALL_HEIGHT
 
 
 class TopDownCamera:
@@ -18,8 +18,16 @@ class TopDownCamera:
     """
 
     def __init__(self, arena: tuple[float, float], width: int = 256, height: int = 256) -> None:
-        if not (isinstance(width, int) and isinstance(height, int) and width > 0 and height > 0):
-            raise ValueError(f"render size must be positive integers, got {width} x {height}")
+        for name, side in (("render_width", width), ("render_height", height)):
+            if isinstance(side, bool) or not isinstance(side, int):
+                raise TypeError(f"{name} = {side!r}: must be an integer number of pixels")
+            if side <= 0:
+                raise ValueError(f"render size must be positive integers, got {name} = {side!r}")
+            if side > MAX_RENDER_SIDE:
+                raise ValueError(
+                    f"{name} = {side} is larger than {MAX_RENDER_SIDE} pixels "
+                    "(bullet_maze.params.MAX_RENDER_SIDE)"
+                )
         self.width, self.height = width, height
         s = METRES_PER_UNIT
         margin = BOUNDARY_THICKNESS / 2

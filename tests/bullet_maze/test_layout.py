@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from bullet_maze import available_layouts, load_layout
-from bullet_maze.layout import MazeLayout
+from bullet_maze.layout import parse_layout
 
 from .conftest import SMALL_MAZE
 
@@ -117,7 +117,7 @@ def test_goal_unreachable_for_the_robot_radius(write_maze: Callable[[str], Path]
     # A wall across the arena with a 4-unit gap: too narrow for a robot of radius 2.
     wall = "[[walls]]\ncenter = [48.0, 50.0]\nsize = [96.0, 2.0]\n"
     path = write_maze(SMALL_MAZE + wall)
-    with pytest.raises(ValueError, match=r"'goal'.*cannot be reached.*radius 2\.0"):
+    with pytest.raises(ValueError, match=r"'goal\.position'.*cannot be reached.*radius 2\b"):
         load_layout(path)
     wider = SMALL_MAZE.replace("robot_radius = 2.0", "robot_radius = 1.0")
     assert load_layout(write_maze(wider + wall)).walls  # a radius-1 robot fits through
@@ -139,6 +139,6 @@ def test_missing_file_is_file_not_found(tmp_path: Path) -> None:
         load_layout(tmp_path / "missing.toml")
 
 
-def test_layout_from_dict_is_validated_too() -> None:
+def test_parse_layout_names_missing_fields() -> None:
     with pytest.raises(ValueError, match=r"<dict>: missing field 'arena'"):
-        MazeLayout.from_dict({"start": {}, "goal": {}})
+        parse_layout({"start": {}, "goal": {}})

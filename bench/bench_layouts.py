@@ -1,0 +1,284 @@
+"""Layouts at scale: what the number of solids and the arena's size cost.
+
+``--only solids``: for N = 10, 50, 200, 1,000 solids, the world's build time (``gymnasium.make``
+and the first reset, wall clock), kinematic steps per CPU second (random actions; a reset to a
+random free start every 1,000 steps, so that the walk covers the arena), pybullet distance
+queries per step and the CPU time of one query, dynamic steps per CPU second, and the time of a
+256 x 256 image. Three series: forests of N cylinders and perfect mazes of about N walls at a
+constant density (the arena grows with N, so a step meets as many solids whatever N), and
+forests of N cylinders in a fixed 1,000 x 1,000 arena (denser with N). Every round builds and
+runs every case, alternately forwards and backwards; rates are medians over the rounds and each
+ratio (to the N = 10 case of its series) the median of the ratios within the rounds.
+
+``--only limit``: the physical limit (``shortest_path``) of 200-tree forests in arenas of 300 to
+2,000 units and of a 200-wall maze, each case in a fresh process: wall time and the growth of the
+resident set (peak RSS after minus before), against the ``paper`` layout in the same run.
+``--compare-with DIR`` runs the same cases (arenas up to 1,000) with the package found in DIR,
+an export of an older tree (``git archive COMMIT | tar -x -C DIR``), for a before/after.
+
+Run: ``python bench/bench_layouts.py`` (``--quick`` for a smoke test).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+
+import bullet_maze
+from bullet_maze.geometry import clearance
+
+COUNTS = (10, 50, 200, 1000)
+
+
+@dataclass(frozen=True)
+class Case:
+    series: str
+    count: int
+    spec: str
+
+
+def cases(counts: tuple[int, ...]) -> list[Case]:
+    """The three series of ``--only solids``."""
+    found = []
+    for n in counts:
+        side = 2000.0 * math.sqrt(n / 1000.0)
+        found.append(
+            Case(
+                "forest, constant density",
+                n,
+                f"forest:seed=0,count={n},width={side:.0f},height={side:.0f},gap=11",
+            )
+        )
+        cells = max(3, round(math.sqrt(n / 0.46)))  # a perfect maze has about 0.46 walls a cell
+        found.append(
+            Case("maze, constant density", n, f"maze:seed=0,rows={cells},cols={cells},cell=40")
+        )
+        found.append(
+            Case(
+                "forest, 1000 x 1000",
+                n,
+                f"forest:seed=0,count={n},width=1000,height=1000,radius_min=2,radius_max=6,gap=11",
+            )
+        )
+    return found
+
+
+def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
+    """One round of one case."""
+    start = time.perf_counter()
+    env = gym.make("BulletMaze-v0", maze=case.spec, render_mode="rgb_array")
+    env.reset(seed=0)
+    build = time.perf_counter() - start
+    unwrapped = env.unwrapped
+    layout, world = unwrapped.layout, unwrapped.world
+    queries, query_time = [0], [0.0]
+    closest = world._closest
+
+    def counted(x: float, y: float, reach: float) -> list[tuple]:
+        queries[0] += 1
+        begin = time.process_time()
+        points = closest(x, y, reach)
+        query_time[0] += time.process_time() - begin
+        return points
+
+    world._closest = counted
+    rng = np.random.default_rng(0)
+    starts = free_points(layout, rng, 1 + steps // 1000)
+    actions = rng.integers(0, 4, steps).tolist()
+    begin = time.process_time()
+    for i, action in enumerate(actions):
+        if i % 1000 == 0:
+            env.reset(options={"start": starts[i // 1000]})
+        _, _, terminated, truncated, _ = env.step(action)
+        if terminated or truncated:
+            env.reset()
+    kinematic = steps / (time.process_time() - begin)
+    render_begin = time.perf_counter()
+    for _ in range(3):
+        env.render()
+    render = (time.perf_counter() - render_begin) / 3
+    env.close()
+    dynamic_env = gym.make("BulletMaze-v0", maze=case.spec, mode="dynamic")
+    dynamic_env.reset(seed=0)
+    begin = time.process_time()
+    for action in actions[:dynamic_steps]:
+        _, _, terminated, truncated, _ = dynamic_env.step(action)
+        if terminated or truncated:
+            dynamic_env.reset()
+    dynamic = dynamic_steps / (time.process_time() - begin)
+    dynamic_env.close()
+    return {
+        "solids": layout.solid_count,
+        "arena": layout.arena[0],
+        "build_ms": build * 1e3,
+        "kinematic": kinematic,
+        "queries": queries[0] / steps,
+        "query_us": query_time[0] / max(queries[0], 1) * 1e6,
+        "dynamic": dynamic,
+        "render_ms": render * 1e3,
+    }
+
+
+def free_points(layout: bullet_maze.MazeLayout, rng: np.random.Generator, n: int) -> list:
+    """``n`` random starts where the robot is clear of every solid and outside the goal."""
+    points = []
+    radius = layout.robot_radius
+    while len(points) < n:
+        x, y = rng.uniform(radius, np.array(layout.arena) - radius)
+        if clearance(layout, np.array((x, y))) > radius + 0.5 and (
+            math.dist((x, y), layout.goal) > layout.goal_radius
+        ):
+            points.append((float(x), float(y)))
+    return points
+
+
+def bench_solids(counts: tuple[int, ...], rounds: int, steps: int, dynamic_steps: int) -> None:
+    found = cases(counts)
+    results: dict[Case, list[dict[str, float]]] = {case: [] for case in found}
+    for r in range(rounds):
+        order = found if r % 2 == 0 else found[::-1]
+        for case in order:
+            results[case].append(measure(case, steps, dynamic_steps))
+        print(f"round {r + 1}/{rounds} done", file=sys.stderr)
+    print(
+        "| series | solids | arena | build (ms) | kinematic steps/s | vs N=10 | queries/step | "
+        "us/query | dynamic steps/s | vs N=10 | render (ms) |"
+    )
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for case in found:
+        rows = results[case]
+        reference = results[next(c for c in found if c.series == case.series)]
+        med = {key: statistics.median(row[key] for row in rows) for key in rows[0]}
+        kin = statistics.median(
+            a["kinematic"] / b["kinematic"] for a, b in zip(rows, reference, strict=True)
+        )
+        dyn = statistics.median(
+            a["dynamic"] / b["dynamic"] for a, b in zip(rows, reference, strict=True)
+        )
+        print(
+            f"| {case.series} | {med['solids']:.0f} | {med['arena']:.0f} | {med['build_ms']:.0f} | "
+            f"{med['kinematic']:,.0f} | {kin:.2f} | {med['queries']:.3f} | {med['query_us']:.1f} | "
+            f"{med['dynamic']:,.0f} | {dyn:.2f} | {med['render_ms']:.0f} |"
+        )
+
+
+LIMIT_CODE = """
+import json, resource, sys, time
+from bullet_maze import load_layout, shortest_path
+layout = load_layout(sys.argv[1])
+before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+start = time.perf_counter()
+limit = shortest_path(layout)
+seconds = time.perf_counter() - start
+after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+print(json.dumps({"seconds": seconds, "mb": (after - before) / 1024, "steps": limit.steps}))
+"""
+
+
+def limit_cases(quick: bool) -> list[tuple[str, str]]:
+    sides = (300, 1000) if quick else (300, 600, 1000, 2000)
+    found = [("paper (reference)", "paper")]
+    # 200 trees of radius 1-3 fit a 300 x 300 arena (the default 4-12 jam there).
+    found += [
+        (
+            f"forest, 200 trees, {s} x {s}",
+            f"forest:seed=0,count=200,width={s},height={s},radius_min=1,radius_max=3,gap=10.5",
+        )
+        for s in sides
+    ]
+    found.append(
+        (
+            "maze, 21 x 21 cells (about 200 walls), 1000 x 1000",
+            "maze:seed=0,rows=21,cols=21,cell=47.6",
+        )
+    )
+    return found
+
+
+def run_limit(path: Path, package: str) -> dict[str, float]:
+    env = dict(os.environ, PYTHONPATH=package)
+    # Run from the package's folder: ``python -c`` puts the working directory first on the path.
+    out = subprocess.run(
+        [sys.executable, "-c", LIMIT_CODE, str(path)],
+        cwd=package,
+        check=True,
+        capture_output=True,
+        text=True,
+        env=env,
+    )
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def bench_limit(rounds: int, quick: bool, compare: str | None) -> None:
+    here = str(Path(bullet_maze.__file__).resolve().parent.parent)
+    packages = [("this tree", here)] + ([("compared tree", compare)] if compare else [])
+    with tempfile.TemporaryDirectory() as tmp:
+        files = []
+        for label, spec in limit_cases(quick):
+            path = Path(tmp) / f"{len(files)}.toml"
+            path.write_text(bullet_maze.layout_to_toml(bullet_maze.load_layout(spec)))
+            files.append((label, path, bullet_maze.load_layout(spec).arena[0]))
+        results: dict[tuple[str, str], list[dict[str, float]]] = {}
+        for r in range(rounds):
+            order = files if r % 2 == 0 else files[::-1]
+            for label, path, side in order:
+                for name, package in packages:
+                    if name != "this tree" and side > 1000:
+                        continue  # the old grid needs about 8 GB at 2,000 x 2,000
+                    results.setdefault((label, name), []).append(run_limit(path, package))
+            print(f"round {r + 1}/{rounds} done", file=sys.stderr)
+    print("| layout | code | time (s) | vs paper | RSS growth (MB) | least steps |")
+    print("| --- | --- | --- | --- | --- | --- |")
+    for (label, name), rows in results.items():
+        reference = results[("paper (reference)", name)]
+        ratio = statistics.median(
+            a["seconds"] / b["seconds"] for a, b in zip(rows, reference, strict=True)
+        )
+        seconds = statistics.median(row["seconds"] for row in rows)
+        mb = statistics.median(row["mb"] for row in rows)
+        print(
+            f"| {label} | {name} | {seconds:.2f} | {ratio:.2f} | {mb:.0f} | "
+            f"{rows[0]['steps']:.0f} |"
+        )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--only", choices=("solids", "limit"), help="one part only")
+    parser.add_argument("--rounds", type=int, default=5, help="interleaved rounds (default 5)")
+    parser.add_argument("--steps", type=int, default=20_000, help="kinematic steps per case")
+    parser.add_argument("--dynamic-steps", type=int, default=2_000, help="dynamic steps per case")
+    parser.add_argument("--compare-with", metavar="DIR", help="an older tree for --only limit")
+    parser.add_argument("--quick", action="store_true", help="a smoke test: small and short")
+    args = parser.parse_args()
+    jobs: dict[str, Callable[[], None]] = {
+        "solids": lambda: bench_solids(
+            (10, 200) if args.quick else COUNTS,
+            1 if args.quick else args.rounds,
+            2_000 if args.quick else args.steps,
+            200 if args.quick else args.dynamic_steps,
+        ),
+        "limit": lambda: bench_limit(
+            1 if args.quick else args.rounds, args.quick, args.compare_with
+        ),
+    }
+    for name, job in jobs.items():
+        if args.only in (None, name):
+            job()
+
+
+if __name__ == "__main__":
+    main()
