@@ -115,7 +115,8 @@ def check_value(value: Any, hint: Any, where: str) -> None:
     """
     problem = _type_problem(value, hint)
     if problem is not None:
-        raise ValueError(f"{where}: expected {problem}, got {value!r}")
+        shown = str(value).lower() if isinstance(value, bool) else repr(value)
+        raise ValueError(f"{where}: expected {problem}, got {shown}")
     _check_finite(value, where)
 
 

@@ -112,6 +112,7 @@ def test_train_writes_its_folder(trained):
         "learning_curve.png",
         "meta.json",
         "partition.png",
+        "policy.npz",
     ]
     rows = read_csv(out / "episodes.csv")
     assert list(rows[0]) == list(store.COLUMNS)
@@ -321,11 +322,15 @@ def test_experiment_resumes_after_a_kill(tmp_path: Path):
         command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
     )
     deadline = time.monotonic() + 60
-    while not list((out / "runs").glob("*.csv")) and time.monotonic() < deadline:
+    while not list((out / "runs").glob("*.json")) and time.monotonic() < deadline:
         time.sleep(0.01)
     process.send_signal(signal.SIGKILL)
     process.wait()
-    finished = {p.name: p.stat().st_mtime_ns for p in (out / "runs").glob("*.csv")}
+    # a run is finished once its sidecar is written (after its CSV)
+    finished = {
+        p.with_suffix(".csv").name: p.with_suffix(".csv").stat().st_mtime_ns
+        for p in (out / "runs").glob("*.json")
+    }
     assert 1 <= len(finished) < 9, "the kill came too late to test a resume"
     assert not (out / "episodes.csv").exists()
 
