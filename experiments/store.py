@@ -235,10 +235,15 @@ def _read_verified(run_dir: Path, name: str, episodes: int | None, cap: int | No
         raise ValueError(f"{csv_path}: missing (its sidecar exists)")
     size = csv_path.stat().st_size
     if size != meta["data_bytes"] or size > MAX_ROW_BYTES * (recorded + 1):
-        raise ValueError(f"{csv_path}: {size} bytes, its sidecar records {meta['data_bytes']}")
+        raise ValueError(
+            f"{csv_path}: differs from its sidecar ({size} bytes, recorded {meta['data_bytes']}; "
+            "edited, cut or damaged)"
+        )
     raw = csv_path.read_bytes()
     if hashlib.sha256(raw).hexdigest() != meta["data_sha256"]:
-        raise ValueError(f"{csv_path}: content differs from the hash its sidecar records")
+        raise ValueError(
+            f"{csv_path}: differs from its sidecar (SHA-256 mismatch; edited or damaged)"
+        )
     columns = parse_rows(raw, str(csv_path), cap)
     if len(columns["steps"]) != recorded:
         raise ValueError(f"{csv_path}: {len(columns['steps'])} rows, its sidecar says {recorded}")
