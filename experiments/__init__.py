@@ -35,10 +35,31 @@ The experiment files themselves (``paper_fig4.toml``, ``quick.toml``) live besid
 
 from __future__ import annotations
 
-from experiments.backends import BACKENDS, TasksLost, default_workers, make_backend
-from experiments.config import EXPERIMENT_DIR, MODES, ConfigError
-from experiments.jobs import EnvOptions, Experiment, Playback, TrainJob
-from experiments.runner import FolderState
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from experiments.backends import BACKENDS, TasksLost, default_workers, make_backend
+    from experiments.config import EXPERIMENT_DIR, MODES, ConfigError
+    from experiments.jobs import EnvOptions, Experiment, Playback, TrainJob
+    from experiments.runner import FolderState
+
+_EXPORTS = {
+    "BACKENDS": "experiments.backends",
+    "TasksLost": "experiments.backends",
+    "default_workers": "experiments.backends",
+    "make_backend": "experiments.backends",
+    "EXPERIMENT_DIR": "experiments.config",
+    "MODES": "experiments.config",
+    "ConfigError": "experiments.config",
+    "EnvOptions": "experiments.jobs",
+    "Experiment": "experiments.jobs",
+    "Playback": "experiments.jobs",
+    "TrainJob": "experiments.jobs",
+    "FolderState": "experiments.runner",
+}
+"""The public names and their modules, imported on first use: a worker process that imports
+``experiments.training`` does not pay for the plotting modules the front door also offers."""
 
 __all__ = [
     "BACKENDS",
@@ -54,3 +75,13 @@ __all__ = [
     "default_workers",
     "make_backend",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _EXPORTS:
+        raise AttributeError(f"module 'experiments' has no attribute {name!r}")
+    return getattr(importlib.import_module(_EXPORTS[name]), name)
+
+
+def __dir__() -> list[str]:
+    return __all__

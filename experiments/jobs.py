@@ -17,24 +17,25 @@ import time
 from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from agent.serialization import config_from_data, exploration_from_data
 from experiments import config as config_module
 from experiments import factory, runner
-from experiments.animation import render_gif
-from experiments.backends import Backend
 from experiments.config import ConfigError, EnvSpec, ExperimentConfig
 from experiments.evaluation import Episode, Evaluation, evaluate, greedy_episode
 from experiments.plan import RunSpec, select_strategies
-from experiments.report import Report, write_report
 from experiments.runner import FolderState, Task
 from experiments.seeding import run_seed
-from experiments.single_run import SingleRun, train_and_save
 from experiments.store import EpisodeRow, RunResult
 from experiments.training import train_run
+
+if TYPE_CHECKING:  # the modules that draw are imported when a job draws (matplotlib is slow)
+    from experiments.backends import Backend
+    from experiments.report import Report
+    from experiments.single_run import SingleRun
 
 DEFAULT_CONFIG = "quick"
 """The experiment file of the default job and of ``train`` (``experiments/quick.toml``)."""
@@ -161,6 +162,8 @@ class TrainJob:
     ) -> SingleRun:
         """Train, save and picture the agent (``on_start(optimal_steps)``, ``on_episode(row)``
         for a progress bar)."""
+        from experiments.single_run import train_and_save
+
         try:
             self.out.mkdir(parents=True, exist_ok=True)
         except OSError as error:
@@ -275,6 +278,8 @@ class Experiment:
 
     def report(self) -> Report:
         """Write the report of every finished, verified run (``ConfigError`` if none)."""
+        from experiments.report import write_report
+
         if not self.out.is_dir():
             raise ConfigError(f"{self.out}: no such results folder (nothing has run)")
         try:
@@ -382,6 +387,8 @@ class Playback:
     ) -> tuple[Path, Episode]:
         """A GIF of one greedy episode over the partition (default: ``episode.gif`` beside the
         agent)."""
+        from experiments.animation import render_gif
+
         if not self.config.env.is_maze:
             raise ConfigError(f"render draws maze environments only, not {self.config.env.id!r}")
         out = out or self.path.parent / "episode.gif"

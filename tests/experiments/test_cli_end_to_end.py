@@ -19,49 +19,6 @@ from experiments import store
 ROOT = Path(run.__file__).resolve().parent
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
-TINY = """
-[experiment]
-name = "tiny"
-seed = 5
-runs = 2
-episodes = {episodes}
-baseline = "eps"
-smoothing_window = 2
-final_window = 2
-
-[env]
-maze = "paper"
-max_episode_steps = {cap}
-
-[agent]
-alpha = 0.3
-gamma = 0.99
-split_min_samples = 50
-
-[[strategy]]
-name = "eps"
-exploration = "epsilon-greedy"
-exploration_params = {{ epsilon = 0.1 }}
-
-[[strategy]]
-name = "adaptive+tabu"
-exploration = "adaptive+tabu"
-
-[[strategy]]
-name = "grid-6"
-agent = "grid"
-resolution = 6
-exploration = "epsilon-greedy"
-exploration_params = {{ epsilon = 0.1 }}
-"""
-
-
-def tiny_config(folder: Path, episodes: int = 4, cap: int = 120, runs: int = 2) -> Path:
-    """A three-strategy experiment file small enough for a test."""
-    path = folder / "tiny.toml"
-    path.write_text(TINY.format(episodes=episodes, cap=cap).replace("runs = 2", f"runs = {runs}"))
-    return path
-
 
 def assert_png(path: Path) -> None:
     data = path.read_bytes()
@@ -271,8 +228,8 @@ def test_render_writes_a_gif(trained, tmp_path: Path):
     assert gif.read_bytes()[:6] == b"GIF89a"
 
 
-def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys):
-    config = tiny_config(tmp_path)
+def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys, standins):
+    config = standins.tiny_config(tmp_path)
     for workers in ("1", "2"):
         assert (
             run.main(
@@ -304,8 +261,8 @@ def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys):
     assert "report:" in capsys.readouterr().out
 
 
-def test_experiment_resumes_after_a_kill(tmp_path: Path):
-    config = tiny_config(tmp_path, episodes=30, cap=300, runs=3)
+def test_experiment_resumes_after_a_kill(tmp_path: Path, standins):
+    config = standins.tiny_config(tmp_path, episodes=30, cap=300, runs=3)
     out = tmp_path / "killed"
     command = [
         sys.executable,
@@ -344,9 +301,9 @@ def test_experiment_resumes_after_a_kill(tmp_path: Path):
     assert (out / "episodes.csv").read_bytes() == (fresh / "episodes.csv").read_bytes()
 
 
-def test_ray_backend_gives_the_same_csv(tmp_path: Path):
+def test_ray_backend_gives_the_same_csv(tmp_path: Path, standins):
     pytest.importorskip("ray")
-    config = tiny_config(tmp_path, runs=1)
+    config = standins.tiny_config(tmp_path, runs=1)
     for backend in ("serial", "ray"):
         assert (
             run.main(
