@@ -427,10 +427,8 @@ def _print_training_summary(result: Any) -> None:
     outcome = "reached the goal" if result.greedy.success else "did not reach the goal"
     print(f"greedy policy: {outcome} in {result.greedy.steps} steps")
     print(f"leaves: {result.leaves}")
-    print(
-        f"results: {result.out}/ (episodes.csv, learning_curve.png, partition.png, "
-        "agent.npz, policy.npz)"
-    )
+    written = ", ".join(sorted(p.name for p in result.out.iterdir() if p.is_file()))
+    print(f"results: {result.out}/ ({written})")
 
 
 def cmd_default(args: argparse.Namespace) -> int:

@@ -421,10 +421,11 @@ def _read_archive(
         raise fail("entry 'visits' holds negative counts")
 
     box = meta["observation_space"]
+    dtype = np.dtype(box["dtype"])
     observation_space = spaces.Box(
-        low=np.asarray(box["low"], dtype=np.float64),
-        high=np.asarray(box["high"], dtype=np.float64),
-        dtype=np.dtype(box["dtype"]),
+        low=np.asarray(box["low"], dtype=dtype),
+        high=np.asarray(box["high"], dtype=dtype),
+        dtype=dtype,
     )
     exploration = meta["exploration"]
     return SavedAgent(

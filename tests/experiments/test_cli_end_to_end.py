@@ -331,3 +331,49 @@ def test_ray_backend_gives_the_same_csv(tmp_path: Path, standins):
     assert len(meta) == 3
     assert all(m["meta"]["pid"] != os.getpid() for m in meta)
     assert all(np.isfinite(m["steps_per_second"]) for m in meta)
+
+
+CLASSIC = """
+[experiment]
+name = "mc"
+runs = 2
+episodes = 3
+smoothing_window = 2
+final_window = 2
+
+[env]
+id = "MountainCar-v0"
+max_episode_steps = 40
+
+[agent]
+split_min_samples = 20
+
+[[strategy]]
+name = "eps"
+exploration = "epsilon-greedy"
+
+[[strategy]]
+name = "grid"
+agent = "grid"
+resolution = 6
+exploration = "epsilon-greedy"
+"""
+
+
+def test_a_gymnasium_classic_control_experiment_runs(tmp_path: Path, capsys):
+    """Gymnasium's own ids stay usable in experiment files (no maze, robot or mode)."""
+    path = tmp_path / "mc.toml"
+    path.write_text(CLASSIC)
+    out = tmp_path / "out"
+    argv = ["experiment", str(path), "--backend", "serial", "--no-progress", "--out", str(out)]
+    assert run.main(argv) == 0
+    rows = read_csv(out / "episodes.csv")
+    assert len(rows) == 2 * 2 * 3
+    assert all(int(r["steps"]) == 40 and r["truncated"] == "1" for r in rows)
+    assert "maze" not in (out / "config.toml").read_text()
+    train = tmp_path / "train"
+    argv = ["train", "--config", str(path), "--episodes", "2", "--no-progress", "--out", str(train)]
+    assert run.main(argv) == 0
+    assert not (train / "partition.png").exists()
+    assert run.main(["evaluate", str(train), "--episodes", "1"]) == 0
+    assert "in MountainCar-v0 (cap 40)" in capsys.readouterr().out
