@@ -41,6 +41,11 @@ from experiments import (
 
 DEFAULT_CONFIG = "quick"
 RESULTS_DIR = Path("results")
+MAX_WORKERS = 1024
+MAX_EVALUATION_EPISODES = 1_000_000
+MAX_FPS = 100
+MAX_FRAMES = 10_000
+MAX_SECONDS = 1e7
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -170,7 +175,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     experiment.add_argument(
         "--workers",
-        type=_positive,
+        type=_at_most(MAX_WORKERS),
         metavar="N",
         help=f"parallel runs (default: all cores, here {default_workers()})",
     )
@@ -221,7 +226,11 @@ def build_parser() -> argparse.ArgumentParser:
         "agent", metavar="AGENT", help="agent.npz file, or a train folder that holds one"
     )
     evaluate.add_argument(
-        "--episodes", type=_positive, default=20, metavar="N", help="greedy episodes (default: 20)"
+        "--episodes",
+        type=_at_most(MAX_EVALUATION_EPISODES),
+        default=20,
+        metavar="N",
+        help="greedy episodes (default: 20)",
     )
     evaluate.add_argument(
         "--seed",
@@ -251,10 +260,12 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument(
         "--seed", type=_non_negative, default=0, metavar="N", help="seed of the reset (default: 0)"
     )
-    render.add_argument("--fps", type=_positive, default=15, help="frames per second")
+    render.add_argument(
+        "--fps", type=_at_most(MAX_FPS), default=15, help=f"frames per second (1 to {MAX_FPS})"
+    )
     render.add_argument(
         "--max-frames",
-        type=_positive,
+        type=_at_most(MAX_FRAMES),
         default=150,
         metavar="N",
         help="longest GIF; long episodes are subsampled (default: 150)",
@@ -319,6 +330,18 @@ def _positive(text: str) -> int:
     return value
 
 
+def _at_most(high: int) -> Any:
+    def integer(text: str) -> int:
+        value = _positive(text)
+        if value > high:
+            raise argparse.ArgumentTypeError(
+                f"expected an integer from 1 to {high:,}, got {text!r}"
+            )
+        return value
+
+    return integer
+
+
 def _non_negative(text: str) -> int:
     value = _integer(text)
     if value < 0:
@@ -331,8 +354,10 @@ def _seconds(text: str) -> float:
         value = float(text)
     except ValueError:
         value = math.nan
-    if not value >= 0:  # also rejects NaN
-        raise argparse.ArgumentTypeError(f"expected a number of seconds >= 0, got {text!r}")
+    if not 0 <= value <= MAX_SECONDS:  # also rejects NaN
+        raise argparse.ArgumentTypeError(
+            f"expected a number of seconds from 0 to {MAX_SECONDS:g}, got {text!r}"
+        )
     return value
 
 

@@ -183,6 +183,9 @@ def _check_finite(value: Any, where: str) -> None:
     if isinstance(value, list | tuple):
         for item in value:
             _check_finite(item, where)
+    if isinstance(value, Mapping):
+        for item in value.values():
+            _check_finite(item, where)
 
 
 def config_from_data(data: Any, where: str) -> TreeConfig:

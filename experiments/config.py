@@ -70,6 +70,8 @@ MAX_NAME = 100
 """Longest experiment or strategy name (they name files)."""
 MAX_TEXT = 20_000
 """Longest description."""
+MAX_STRING = 4096
+"""Longest other string (a path, a name, an id)."""
 MAX_TIME_BUDGET_S = 1e7
 """Longest wall-clock budget of a ``train`` run, in seconds."""
 
@@ -412,7 +414,10 @@ def parse_assignments(items: Sequence[str], option: str) -> dict[str, Any]:
             continue
         if set(parsed) != {"v"}:
             raise ConfigError(f"option {option}: {item!r} is not one KEY=VALUE")
-        _Reader(f"option {option}").document({key: parsed["v"]})
+        try:
+            check_value(parsed["v"], Any, f"option {option} {key}")  # finite, at least
+        except ValueError as error:
+            raise ConfigError(str(error)) from None
         values[key] = parsed["v"]
     return values
 
@@ -540,20 +545,35 @@ class _Reader:
 
     def document(self, data: Any) -> None:
         """Every number finite, nesting bounded, keys strings (walked without recursion)."""
-        stack: list[tuple[Any, str, int]] = [(data, "", 0)]
+        stack: list[tuple[Any, tuple[Any, ...]]] = [(data, ())]
         while stack:
-            value, where, depth = stack.pop()
-            if depth > MAX_DEPTH:
-                raise ConfigError(f"{self.source}: {where}: nested more than {MAX_DEPTH} levels")
+            value, path = stack.pop()
+            if len(path) > MAX_DEPTH:
+                raise self.at(path, f"nested more than {MAX_DEPTH} levels")
             if isinstance(value, float) and not math.isfinite(value):
-                raise ConfigError(f"{self.source}: {where}: must be finite, got {value!r}")
+                raise self.at(path, f"must be finite, got {value!r}")
             if isinstance(value, Mapping):
                 for key, item in value.items():
                     if not isinstance(key, str):
-                        raise ConfigError(f"{self.source}: {where}: key {key!r} is not a string")
-                    stack.append((item, f"{where}.{key}" if where else key, depth + 1))
+                        raise self.at(path, f"key {key!r} is not a string")
+                    stack.append((item, (*path, key)))
             elif isinstance(value, list | tuple):
-                stack += [(item, f"{where}[{i}]", depth + 1) for i, item in enumerate(value)]
+                stack += [(item, (*path, i)) for i, item in enumerate(value)]
+
+    def at(self, path: tuple[Any, ...], message: str) -> ConfigError:
+        """An error at a key path, written as the rest of this module writes keys
+        (``[agent] alpha``, ``[strategy.1] config.max_leaves``)."""
+        if len(path) >= 2 and path[0] == "strategy" and isinstance(path[1], int):
+            table, rest = f"strategy.{path[1]}", path[2:]
+        else:
+            table, rest = (str(path[0]) if path else ""), path[1:]
+        key = ".".join(str(k) if not isinstance(k, int) else f"[{k}]" for k in rest)
+        key = key.replace(".[", "[")
+        return (
+            self.fail(table, key or "(table)", message)
+            if table
+            else ConfigError(f"{self.source}: {message}")
+        )
 
     def only(self, table: Mapping[str, Any], where: str, allowed: set[str]) -> None:
         for key in table:
@@ -589,6 +609,9 @@ class _Reader:
             raise self.fail(where, key, f"expected {_kind_name(kinds)}, got {value!r}")
         if not isinstance(value, kinds):
             raise self.fail(where, key, f"expected {_kind_name(kinds)}, got {value!r}")
+        limit = MAX_TEXT if key == "description" else MAX_STRING
+        if isinstance(value, str) and len(value) > limit:
+            raise self.fail(where, key, f"longer than {limit:,} characters")
         return value
 
     def number(self, table: Mapping[str, Any], where: str, key: str, default: Any) -> Any:

@@ -113,6 +113,10 @@ def check_env(spec: EnvSpec, origins: Mapping[str, str]) -> gym.Env:
         return make_env(spec)
     except (TypeError, ValueError, OSError, gym.error.Error) as error:
         raise ConfigError(f"{origins['env']}: {error}") from None
+    except Exception as error:  # e.g. pybullet.error on a robot file it cannot load
+        raise ConfigError(
+            f"{origins['env']}: cannot build the environment ({type(error).__name__}: {error})"
+        ) from None
 
 
 def check_agents(config: ExperimentConfig, env: gym.Env) -> None:
