@@ -261,6 +261,23 @@ def _constructor(env_id: str) -> tuple[inspect.Signature, dict[str, Any]] | None
 # --- loading ------------------------------------------------------------------------------
 
 
+def text_problem(value: str, limit: int = MAX_STRING) -> str | None:
+    """What is wrong with a string a user gave (None if nothing): too long, or a NUL."""
+    if len(value) > limit:
+        return f"longer than {limit:,} characters"
+    if "\x00" in value:
+        return "holds a NUL character"
+    return None
+
+
+def check_option_text(value: str, option: str) -> str:
+    """A string given on the command line (``ConfigError`` naming the option otherwise)."""
+    problem = text_problem(value)
+    if problem:
+        raise ConfigError(f"option {option}: the value {value[:40]!r}... {problem}")
+    return value
+
+
 def resolve_path(name_or_path: str | Path) -> Path:
     """The file of an experiment given as a path or as a name in ``experiments/``."""
     path = Path(name_or_path)
@@ -609,9 +626,10 @@ class _Reader:
             raise self.fail(where, key, f"expected {_kind_name(kinds)}, got {value!r}")
         if not isinstance(value, kinds):
             raise self.fail(where, key, f"expected {_kind_name(kinds)}, got {value!r}")
-        limit = MAX_TEXT if key == "description" else MAX_STRING
-        if isinstance(value, str) and len(value) > limit:
-            raise self.fail(where, key, f"longer than {limit:,} characters")
+        if isinstance(value, str):
+            problem = text_problem(value, MAX_TEXT if key == "description" else MAX_STRING)
+            if problem:
+                raise self.fail(where, key, problem)
         return value
 
     def number(self, table: Mapping[str, Any], where: str, key: str, default: Any) -> Any:

@@ -57,7 +57,7 @@ class EnvOptions:
     def apply(self, config: ExperimentConfig) -> tuple[ExperimentConfig, dict[str, str]]:
         """``config`` with these settings, and where each environment setting came from."""
         given: dict[str, Any] = {
-            key: value
+            key: config_module.check_option_text(value, f"--{key}")
             for key, value in (("maze", self.maze), ("robot", self.robot), ("mode", self.mode))
             if value is not None
         }
@@ -79,8 +79,23 @@ class EnvOptions:
 
 
 def _check_folder(path: Path, option: str) -> Path:
+    config_module.check_option_text(str(path), option)
     runner.check_out_dir(path, option)
     return path
+
+
+def _load(config: str | Path, option: str, allowed_env_ids: Collection[str]) -> ExperimentConfig:
+    """An experiment file named by an option (a missing file is the option's error)."""
+    config_module.check_option_text(str(config), option)
+    try:
+        path = config_module.resolve_path(config)
+    except ConfigError as error:
+        raise ConfigError(f"option {option}: {error}") from None
+    return config_module.load_config(path, allowed_env_ids)
+
+
+MAX_LABEL = 80
+"""Longest maze label in a default folder name (a long path would make too long a name)."""
 
 
 # --- train --------------------------------------------------------------------------------
@@ -123,17 +138,22 @@ class TrainJob:
         """The job the options describe. ``params`` and ``agent_params`` are ``KEY=VALUE``
         texts (values in TOML: ``0.05``, ``true``, ``"text"``; bare text is a string).
         ``time_budget_s`` 0 removes the file's budget."""
-        file_config = config_module.load_config(config, allowed_env_ids)
+        file_config = _load(config, "--config", allowed_env_ids)
         spec = (
-            file_config.strategy(strategy, "--strategy") if strategy else file_config.strategies[0]
+            file_config.strategy(strategy, "--strategy")
+            if strategy is not None
+            else file_config.strategies[0]
         )
         given = config_module.parse_assignments(params or (), "--param")
+        if exploration is not None:
+            config_module.check_option_text(exploration, "--exploration")
+            _checked(lambda: exploration_from_data(exploration, {}, "option --exploration"))
         if exploration is not None or given:
-            name = exploration or spec.exploration
+            name = exploration if exploration is not None else spec.exploration
             merged = given if exploration is not None else {**spec.exploration_params, **given}
             _checked(lambda: exploration_from_data(name, merged, "option --param"))
             spec = dataclasses.replace(spec, exploration=name, exploration_params=merged)
-            if exploration is not None and not strategy:
+            if exploration is not None and strategy is None:
                 spec = dataclasses.replace(spec, name=exploration)
         fields = config_module.parse_assignments(agent_params or (), "--agent-param")
         if fields:
@@ -152,7 +172,8 @@ class TrainJob:
         if seed is not None:
             config_module.check_override("seed", seed)
         run = run_seed(resolved.seed, 0) if seed is None else seed
-        folder = out or results_dir / f"{resolved.env.label}__{spec.name}__{run}"
+        label = resolved.env.label[:MAX_LABEL]
+        folder = out or results_dir / f"{label}__{spec.name}__{run}"
         return cls(resolved, run, _check_folder(folder, "--out"), origins)
 
     def run(
@@ -219,7 +240,7 @@ class Experiment:
         """An experiment file with the command line's overrides; the default folder is
         ``results/<name>`` with ``__<episodes>ep``, ``__cap<N>``, ``__seed<N>`` for the
         overrides that change results (runs may be added to a folder)."""
-        file_config = config_module.load_config(config, allowed_env_ids)
+        file_config = _load(config, "CONFIG", allowed_env_ids)
         resolved = config_module.with_overrides(
             file_config,
             runs=runs,
@@ -336,10 +357,15 @@ class Playback:
         """``agent`` is an agent file or a folder holding one (:data:`AGENT_FILES`);
         ``config`` the experiment file of the environment (default: the one beside the agent,
         else :data:`DEFAULT_CONFIG`)."""
+        config_module.check_option_text(str(agent), "AGENT")
         path = _agent_file(Path(agent))
         beside = path.parent / runner.CONFIG_FILE
-        source = config if config is not None else (beside if beside.is_file() else DEFAULT_CONFIG)
-        loaded = config_module.load_config(source, allowed_env_ids)
+        if config is not None:
+            loaded = _load(config, "--config", allowed_env_ids)
+        else:
+            loaded = config_module.load_config(
+                beside if beside.is_file() else DEFAULT_CONFIG, allowed_env_ids
+            )
         loaded, origins = (env or EnvOptions()).apply(loaded)
         try:
             saved = factory.load_agent(path)
@@ -372,6 +398,7 @@ class Playback:
 
     def evaluate(self, episodes: int, seed: int = 0) -> EvaluationResult:
         """``episodes`` greedy episodes, the first reset seeded with ``seed``."""
+        config_module.check_override("seed", seed)
         env = self.make_env()
         try:
             optimal = factory.optimal_steps(env)
@@ -389,6 +416,7 @@ class Playback:
         agent)."""
         from experiments.animation import render_gif
 
+        config_module.check_override("seed", seed)
         if not self.config.env.is_maze:
             raise ConfigError(f"render draws maze environments only, not {self.config.env.id!r}")
         out = out or self.path.parent / "episode.gif"
