@@ -3,12 +3,13 @@
 A run ``<strategy>__<seed>`` is two files in ``runs/``: its CSV (one row per episode, only
 what the seed determines, bit for bit the same whatever the backend or the number of workers)
 and its JSON sidecar, written after the CSV. The sidecar records the CSV's SHA-256 and size,
-the number of episodes, the fingerprint of every input (:mod:`experiments.fingerprint`) and the
-run's timings. A run counts as finished only when :func:`check_run` verifies it: the sidecar
-parses and names the run, the CSV has the recorded hash, and its rows are well formed (numbered
-1..n, integer counts, finite returns, each count in its range, exactly the expected number of
-episodes). Files are written to a temporary name in the same folder and moved into place with
-``os.replace``, so a killed writer leaves each file whole or absent.
+the number of episodes, the fingerprint of every input (:mod:`experiments.fingerprint`), the
+run's timings, and a hash of all that, so that a damaged sidecar is found too. A run counts
+as finished only when :func:`check_run` verifies it: the sidecar parses, matches its own hash
+and names the run, the CSV has the recorded size and hash, and its rows are well formed
+(numbered 1..n, integer counts, finite returns, each count in its range, exactly the expected
+number of episodes). Files are written to a temporary name in the same folder and moved into
+place with ``os.replace``, so a killed writer leaves each file whole or absent.
 """
 
 from __future__ import annotations
@@ -175,6 +176,7 @@ def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None
         data_bytes=len(data),
         inputs=dict(inputs if inputs is not None else result.inputs),
     )
+    meta["sidecar_sha256"] = fingerprint.digest(meta)  # of everything else in it
     atomic_write_text(csv_path, text)
     atomic_write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True) + "\n")
     return csv_path
@@ -265,6 +267,9 @@ def _read_sidecar(path: Path, name: str) -> dict[str, Any]:
         raise ValueError(
             f"{path}: not a version {SIDECAR_VERSION} run sidecar (no data hash to verify)"
         )
+    recorded = meta.pop("sidecar_sha256", None)
+    if recorded != fingerprint.digest(meta):
+        raise ValueError(f"{path}: differs from its own recorded hash (edited or damaged)")
     if meta.get("name") != name:
         raise ValueError(f"{path}: names run {meta.get('name')!r}, not {name!r}")
     for key, kind in (("episodes", int), ("data_bytes", int), ("data_sha256", str)):

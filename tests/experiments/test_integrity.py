@@ -73,6 +73,7 @@ DAMAGE: list[tuple[str, Callable[[Path], None], str]] = [
     ("garbage", lambda p: p.write_bytes(os.urandom(300)), "differs from its sidecar"),
     ("deleted", lambda p: p.unlink(), "missing (its sidecar exists)"),
     ("sidecar cut", lambda p: _truncate(p.with_suffix(".json")), "not valid JSON"),
+    ("sidecar edited", lambda p: _edit_timing(p.with_suffix(".json")), "its own recorded hash"),
     ("sidecar deleted", lambda p: p.with_suffix(".json").unlink(), "sidecar"),
     ("old sidecar", lambda p: _old_sidecar(p.with_suffix(".json")), "no data hash"),
 ]
@@ -82,9 +83,15 @@ def _truncate(path: Path) -> None:
     path.write_bytes(path.read_bytes()[:40])
 
 
+def _edit_timing(path: Path) -> None:
+    meta = json.loads(path.read_text())
+    meta["wall_time_s"] = 0.001
+    path.write_text(json.dumps(meta))
+
+
 def _old_sidecar(path: Path) -> None:  # a sidecar from before version 2: nothing to verify
     meta = json.loads(path.read_text())
-    for key in ("format", "version", "data_sha256", "data_bytes", "inputs"):
+    for key in ("format", "version", "data_sha256", "data_bytes", "inputs", "sidecar_sha256"):
         meta.pop(key)
     path.write_text(json.dumps(meta))
 
@@ -177,15 +184,24 @@ def test_an_edited_maze_is_refused_by_name_and_a_comment_is_not(
         write_report(config, out, task=standins.fake_run)
 
 
+def _resealed(path: Path, edit: Callable[[dict], None]) -> None:
+    """Edit a sidecar and record its hash again, as a run computed that way would have it."""
+    meta = json.loads(path.read_text())
+    meta.pop("sidecar_sha256")
+    edit(meta)
+    meta["sidecar_sha256"] = fingerprint.digest(meta)
+    path.write_text(json.dumps(meta))
+
+
 def test_a_changed_default_shows_as_a_changed_setting(small_config, standins, tmp_path: Path):
     out = tmp_path / "out"
     runner.run_experiment(small_config, out, SerialBackend(), standins.fake_run)
     sidecar = out / "runs" / f"{runner.plan(small_config)[0].name}.json"
-    meta = json.loads(sidecar.read_text())
-    meta["inputs"]["config"]["agent_config"]["max_leaves"] = (
-        17  # as if computed under another default
-    )
-    sidecar.write_text(json.dumps(meta))
+
+    def other_default(meta: dict) -> None:  # as if computed under another default
+        meta["inputs"]["config"]["agent_config"]["max_leaves"] = 17
+
+    _resealed(sidecar, other_default)
     with pytest.raises(ConfigError, match=r"config\.agent_config\.max_leaves"):
         runner.run_experiment(small_config, out, SerialBackend(), standins.fake_run)
 
