@@ -415,7 +415,14 @@ class SMDPAgent:
                 agent.partition = restore(saved.partition_arrays, saved.partition, saved.config)
             strategy.load_state_dict(saved.exploration_state)
             agent.uniform.restore(saved.rng)
-        except (TypeError, ValueError, KeyError, IndexError, AttributeError) as error:
+        except (
+            TypeError,
+            ValueError,
+            KeyError,
+            IndexError,
+            AttributeError,
+            OverflowError,
+        ) as error:
             raise saved.fail(f"cannot be restored ({type(error).__name__}: {error})") from None
         if agent.partition.n_ids != len(saved.q):
             raise saved.fail("the partition's metadata does not match its arrays")

@@ -329,3 +329,58 @@ def test_random_byte_flips_are_refused_or_harmless(
         assert [loaded.predict(x) for x in probe] == expected
     assert refusals
     assert all(str(flipped) in message for message in refusals)
+
+
+HOSTILE = [
+    True,
+    False,
+    None,
+    -1,
+    0,
+    2**70,
+    1e308,
+    -1e-300,
+    "",
+    "x" * 10_000,
+    [],
+    {},
+    [1.5],
+    {"a": 1},
+]
+
+
+def _json_paths(value: object, path: tuple = ()) -> list[tuple]:
+    if isinstance(value, dict):
+        return [path, *(p for k, v in value.items() for p in _json_paths(v, (*path, k)))]
+    if isinstance(value, list) and len(value) <= 8:
+        return [path, *(p for i, v in enumerate(value) for p in _json_paths(v, (*path, i)))]
+    return [path]
+
+
+def test_random_metadata_edits_are_refused_by_name_or_harmless(
+    tmp_path: Path, make_corridor: Callable[..., gym.Env]
+) -> None:
+    """Any value anywhere in the metadata: a ValueError naming the file, or an agent whose
+    greedy policy is the original's (the policy lives in the arrays, which are checked)."""
+    agent = grown_tree(make_corridor)
+    good = agent.save(tmp_path / "good.npz")
+    with np.load(good, allow_pickle=False) as data:
+        meta = json.loads(data["metadata"].tobytes())
+    paths = [p for p in _json_paths(meta) if p]
+    probe = np.random.default_rng(2).uniform(0, 1, size=(100, 2))
+    expected = [agent.predict(x) for x in probe]
+    rng = np.random.default_rng(9)
+    refusals: list[str] = []
+    bad = tmp_path / "bad.npz"
+    for _ in range(120):
+        path = paths[int(rng.integers(len(paths)))]
+        value = HOSTILE[int(rng.integers(len(HOSTILE)))]
+        _rewrite(good, bad, _meta(*path, value=value))
+        try:
+            loaded = TreeAgent.load(bad)
+        except ValueError as error:
+            refusals.append(str(error))
+            continue
+        assert [loaded.predict(x) for x in probe] == expected, path
+    assert len(refusals) > 60
+    assert all(str(bad) in message and "allow_pickle" not in message for message in refusals)
