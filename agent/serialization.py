@@ -35,6 +35,7 @@ import zipfile
 import zlib
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, fields
+from functools import cache
 from os import PathLike
 from pathlib import Path
 from typing import Any, Literal, Union, get_args, get_origin, get_type_hints
@@ -188,12 +189,21 @@ def _check_finite(value: Any, where: str) -> None:
             _check_finite(item, where)
 
 
+@cache
+def _hints(target: Any) -> dict[str, Any]:
+    """A class's or function's resolved annotations ({} if they cannot be resolved)."""
+    try:
+        return get_type_hints(target)
+    except (NameError, TypeError):
+        return {}
+
+
 def config_from_data(data: Any, where: str) -> TreeConfig:
     """A ``TreeConfig`` from plain data, strictly: only its fields, each of its annotated type,
     finite and within :data:`SIZE_LIMITS`; ``where`` names the source in every error."""
     if not isinstance(data, Mapping):
         raise ValueError(f"{where}: expected a table of TreeConfig fields, got {data!r}")
-    hints = get_type_hints(TreeConfig)
+    hints = _hints(TreeConfig)
     known = [f.name for f in fields(TreeConfig)]
     for key, value in data.items():
         if key not in known:
@@ -239,10 +249,7 @@ def _strategy_classes(strategy: Exploration) -> list[type]:
 
 def _parameter_hint(classes: list[type], key: str) -> Any:
     for cls in classes:
-        try:
-            hints = get_type_hints(cls.__init__)  # type: ignore[misc]
-        except (NameError, TypeError):
-            hints = {}
+        hints = _hints(cls.__init__)  # type: ignore[misc]
         if key in hints:
             return hints[key]
     return None  # unknown keys are refused by make_exploration itself

@@ -68,15 +68,14 @@ radius = 15.0
 
 @pytest.mark.xfail(strict=True, reason=f"a start inside the goal is accepted: {LAYOUTS_HELPER}")
 def test_a_maze_whose_start_lies_in_the_goal_is_refused_naming_the_option(tmp_path: Path):
+    from experiments import EnvOptions, factory
+    from experiments.config import load_config
+
     maze = tmp_path / "bad.toml"
     maze.write_text(LAYOUT.format(start="[150.0, 270.0]", extra=""))
-    from experiments import EnvOptions, TrainJob
-
-    job = TrainJob.from_options(
-        env=EnvOptions(maze=str(maze)), episodes=1, out=tmp_path / "o", time_budget_s=0
-    )
+    config, origins = EnvOptions(maze=str(maze)).apply(load_config("quick"))
     with pytest.raises(ConfigError, match=r"option --maze: .*start"):
-        job.run()
+        factory.check_env(config.env, origins).close()
 
 
 @pytest.mark.xfail(
