@@ -20,6 +20,7 @@ import io
 import json
 import os
 import tempfile
+import warnings
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -300,9 +301,14 @@ def parse_rows(raw: bytes, where: str, cap: int | None = None) -> dict[str, np.n
         bad = next(i for i, line in enumerate(lines) if line.count(",") != len(COLUMNS) - 1)
         raise ValueError(f"{where}: row {bad + 1} does not have {len(COLUMNS)} fields")
     try:
-        table = np.array([line.split(",") for line in lines], dtype=np.float64)
-    except ValueError as error:
-        raise ValueError(f"{where}: a field is not a number ({error})") from None
+        with warnings.catch_warnings():  # numpy warns or raises at the first non-number
+            warnings.simplefilter("ignore", DeprecationWarning)
+            values = np.fromstring(body.replace("\n", ","), dtype=np.float64, sep=",")
+    except ValueError:
+        values = np.zeros(0)
+    if values.size != len(lines) * len(COLUMNS):
+        raise ValueError(f"{where}: a field is not a number")
+    table = values.reshape(len(lines), len(COLUMNS))
     if not np.isfinite(table).all():
         row = int(np.flatnonzero(~np.isfinite(table).all(axis=1))[0])
         raise ValueError(f"{where}: row {row + 1} holds a value that is not finite")

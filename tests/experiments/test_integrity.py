@@ -151,6 +151,8 @@ def test_rows_are_checked_even_when_the_hash_agrees(tmp_path: Path):
         "truncated early": good.replace("4,10,-0.1,1,0", "4,10,-0.1,0,1"),
         "collisions above steps": good.replace("5,10,-0.1,1,0,1,0", "5,10,-0.1,1,0,1,11"),
         "header": good.replace("steps", "Steps"),
+        "text field": good.replace("1,10,-0.1", "1,10,abc"),
+        "empty field": good.replace("2,10,-0.1", "2,,-0.1"),
     }
     for label, text in cases.items():
         with pytest.raises(ValueError, match=r"where\.csv") as error:
@@ -252,6 +254,7 @@ def test_code_changes_are_refused_unless_accepted_and_docstrings_do_not_count(
     without = write_report(small_config, out, task=codetask.task)
     assert [s.runs for s in without.summaries] == [3]
     fingerprint._code_fingerprint.cache_clear()
+    monkeypatch.delitem(sys.modules, "codetask")
 
 
 def test_code_fingerprint_ignores_docstrings_comments_and_layout(tmp_path: Path):
