@@ -283,3 +283,24 @@ def test_env_tables_are_checked_against_their_id(env: dict[str, Any], named: str
     with pytest.raises(ConfigError) as error:
         parse_config(_with(VALID, ("env",), env), source="fuzz.toml")
     assert named in str(error.value)
+
+
+def test_an_id_registered_by_user_code_needs_the_allow_list():
+    """An id that neither this project nor Gymnasium registered (here: by this test) is refused
+    unless the user allows it by name, as ``run.py --allow-env ID`` does."""
+    import gymnasium as gym
+    from gymnasium.envs.registration import registry
+
+    env_id = "UserTask-v0"
+    if env_id not in registry:
+        gym.register(env_id, entry_point=lambda: gym.make("CartPole-v1").unwrapped)
+    data = _with(VALID, ("env",), {"id": env_id})
+    with pytest.raises(ConfigError, match=r"allow it explicitly with --allow-env UserTask-v0"):
+        parse_config(data, source="fuzz.toml")
+    assert parse_config(data, source="fuzz.toml", allowed_env_ids=[env_id]).env.id == env_id
+    with pytest.raises(ConfigError, match="is an import path"):
+        parse_config(
+            _with(VALID, ("env",), {"id": f"os:{env_id}"}),
+            source="fuzz.toml",
+            allowed_env_ids=[f"os:{env_id}"],
+        )
