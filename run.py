@@ -16,25 +16,37 @@ summary and a results folder (per-episode CSV, learning curve, learned partition
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import logging
 import math
 import sys
 import time
-import tomllib
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from experiments import config as config_module
-from experiments.backends import BACKENDS, default_workers, make_backend
-from experiments.config import ConfigError, ExperimentConfig, StrategySpec
-from experiments.seeding import run_seed
+from experiments import (
+    BACKENDS,
+    MODES,
+    ConfigError,
+    EnvOptions,
+    Experiment,
+    FolderState,
+    Playback,
+    TasksLost,
+    TrainJob,
+    default_workers,
+    make_backend,
+)
 
 DEFAULT_CONFIG = "quick"
 RESULTS_DIR = Path("results")
+MAX_WORKERS = 1024
+MAX_EVALUATION_EPISODES = 1_000_000
+MAX_FPS = 100
+MAX_FRAMES = 10_000
+MAX_SECONDS = 1e7
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -52,6 +64,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return COMMANDS[command](args)
     except (ConfigError, FileNotFoundError) as error:
         parser.exit(2, f"run.py {command}: error: {error}\n")
+    except TasksLost as error:
+        print(f"run.py {command}: {error}; finished runs are kept.", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print("\ninterrupted: finished runs are kept; the same command resumes.", file=sys.stderr)
         return 130
@@ -64,6 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="run.py", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
+    _add_allow_env(parser)
     parser.set_defaults(
         command=None,
         config=DEFAULT_CONFIG,
@@ -80,6 +96,7 @@ def build_parser() -> argparse.ArgumentParser:
         exploration=None,
         param=[],
         agent_param=[],
+        allow_env=[],
     )
     sub = parser.add_subparsers(dest="command", metavar="SUBCOMMAND")
 
@@ -159,7 +176,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     experiment.add_argument(
         "--workers",
-        type=_positive,
+        type=_at_most(MAX_WORKERS),
         metavar="N",
         help=f"parallel runs (default: all cores, here {default_workers()})",
     )
@@ -189,6 +206,13 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="compute nothing; write the report of the finished runs",
     )
+    experiment.add_argument(
+        "--accept-code-change",
+        action="store_true",
+        help="count finished runs whose only difference is the code version (another "
+        "version of agent/, bullet_maze/ or the training path); they are listed in the "
+        "report. Without it such runs are refused",
+    )
     _add_output_options(experiment, "results/<name>[__<episodes>ep][__cap<N>]/")
 
     evaluate = sub.add_parser(
@@ -203,7 +227,11 @@ def build_parser() -> argparse.ArgumentParser:
         "agent", metavar="AGENT", help="agent.npz file, or a train folder that holds one"
     )
     evaluate.add_argument(
-        "--episodes", type=_positive, default=20, metavar="N", help="greedy episodes (default: 20)"
+        "--episodes",
+        type=_at_most(MAX_EVALUATION_EPISODES),
+        default=20,
+        metavar="N",
+        help="greedy episodes (default: 20)",
     )
     evaluate.add_argument(
         "--seed",
@@ -233,10 +261,12 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument(
         "--seed", type=_non_negative, default=0, metavar="N", help="seed of the reset (default: 0)"
     )
-    render.add_argument("--fps", type=_positive, default=15, help="frames per second")
+    render.add_argument(
+        "--fps", type=_at_most(MAX_FPS), default=15, help=f"frames per second (1 to {MAX_FPS})"
+    )
     render.add_argument(
         "--max-frames",
-        type=_positive,
+        type=_at_most(MAX_FRAMES),
         default=150,
         metavar="N",
         help="longest GIF; long episodes are subsampled (default: 150)",
@@ -245,6 +275,17 @@ def build_parser() -> argparse.ArgumentParser:
     _add_env_options(render)
     _add_layouts_parser(sub)
     return parser
+
+
+def _add_allow_env(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--allow-env",
+        action="append",
+        metavar="ID",
+        help="also accept this registered Gymnasium id in experiment files (repeatable); "
+        "by default only this project's ids and Gymnasium's own are, and never an import "
+        "path (module:Id)",
+    )
 
 
 def _add_config_source(parser: argparse.ArgumentParser) -> None:
@@ -261,9 +302,7 @@ def _add_config_source(parser: argparse.ArgumentParser) -> None:
 def _add_env_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--maze", metavar="NAME", help="maze layout name or TOML path")
     parser.add_argument("--robot", metavar="NAME", help="disc, husky or a URDF path")
-    parser.add_argument(
-        "--mode", choices=config_module.MODES, help="kinematic (fast) or dynamic (physics)"
-    )
+    parser.add_argument("--mode", choices=MODES, help="kinematic (fast) or dynamic (physics)")
     parser.add_argument(
         "--max-episode-steps",
         type=_positive,
@@ -293,6 +332,18 @@ def _positive(text: str) -> int:
     return value
 
 
+def _at_most(high: int) -> Any:
+    def integer(text: str) -> int:
+        value = _positive(text)
+        if value > high:
+            raise argparse.ArgumentTypeError(
+                f"expected an integer from 1 to {high:,}, got {text!r}"
+            )
+        return value
+
+    return integer
+
+
 def _non_negative(text: str) -> int:
     value = _integer(text)
     if value < 0:
@@ -305,8 +356,10 @@ def _seconds(text: str) -> float:
         value = float(text)
     except ValueError:
         value = math.nan
-    if not value >= 0:  # also rejects NaN
-        raise argparse.ArgumentTypeError(f"expected a number of seconds >= 0, got {text!r}")
+    if not 0 <= value <= MAX_SECONDS:  # also rejects NaN
+        raise argparse.ArgumentTypeError(
+            f"expected a number of seconds from 0 to {MAX_SECONDS:g}, got {text!r}"
+        )
     return value
 
 
@@ -317,65 +370,33 @@ def _integer(text: str) -> int:
         raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
 
 
-def _key_values(items: Sequence[str], option: str) -> dict[str, Any]:
-    """``KEY=VALUE`` options with TOML values (``0.05``, ``true``, ``"text"``, bare text)."""
-    values = {}
-    for item in items:
-        key, sep, raw = item.partition("=")
-        if not sep or not key.strip():
-            raise ConfigError(f"option {option}: expected KEY=VALUE, got {item!r}")
-        try:
-            values[key.strip()] = tomllib.loads(f"v = {raw}")["v"]
-        except tomllib.TOMLDecodeError:
-            values[key.strip()] = raw
-    return values
+def _env_options(args: argparse.Namespace) -> EnvOptions:
+    return EnvOptions(args.maze, args.robot, args.mode, args.max_episode_steps)
 
 
-def _train_setup(args: argparse.Namespace) -> tuple[ExperimentConfig, StrategySpec, int]:
-    """The one-strategy experiment that ``train`` and the default job run."""
-    config = config_module.load_config(args.config)
-    strategy = config.strategy(args.strategy) if args.strategy else config.strategies[0]
-    if args.exploration or args.param:
-        strategy = dataclasses.replace(
-            strategy,
-            exploration=args.exploration or strategy.exploration,
-            exploration_params=(
-                _key_values(args.param, "--param")
-                if args.exploration
-                else {**strategy.exploration_params, **_key_values(args.param, "--param")}
-            ),
-        )
-        if args.exploration and not args.strategy:
-            strategy = dataclasses.replace(strategy, name=args.exploration)
-    if args.agent_param:
-        strategy = dataclasses.replace(
-            strategy, config={**strategy.config, **_key_values(args.agent_param, "--agent-param")}
-        )
-    env_changes = {
-        k: v
-        for k, v in (("maze", args.maze), ("robot", args.robot), ("mode", args.mode))
-        if v is not None
-    }
-    env = dataclasses.replace(config.env, **env_changes)
-    budget = config.time_budget_s if args.time_budget is None else (args.time_budget or None)
-    config = dataclasses.replace(
-        config, strategies=(strategy,), baseline=None, runs=1, env=env, time_budget_s=budget
-    )
-    config = config_module.with_overrides(
-        config, episodes=args.episodes, max_episode_steps=args.max_episode_steps
-    )
-    seed = run_seed(config.seed, 0) if args.seed is None else args.seed
-    return config, strategy, seed
+def _allowed(args: argparse.Namespace) -> tuple[str, ...]:
+    return tuple(args.allow_env or ())
 
 
 def cmd_train(args: argparse.Namespace) -> int:
     """Train one agent with a progress bar, save it, print a summary."""
     from tqdm import tqdm
 
-    from experiments.single_run import train_and_save
-
-    config, strategy, seed = _train_setup(args)
-    out = args.out or RESULTS_DIR / f"{Path(config.env.maze).stem}__{strategy.name}__{seed}"
+    job = TrainJob.from_options(
+        config=args.config,
+        strategy=args.strategy,
+        exploration=args.exploration,
+        params=args.param or (),
+        agent_params=args.agent_param or (),
+        env=_env_options(args),
+        episodes=args.episodes,
+        time_budget_s=args.time_budget,
+        seed=args.seed,
+        out=args.out,
+        allowed_env_ids=_allowed(args),
+        results_dir=RESULTS_DIR,
+    )
+    config, strategy, seed = job.config, job.strategy, job.seed
     budget = config.time_budget_s
     recent: list[int] = []
     with tqdm(
@@ -388,9 +409,13 @@ def cmd_train(args: argparse.Namespace) -> int:
     ) as bar:
 
         def on_start(optimal: float) -> None:
+            where = (
+                f"maze {config.env.maze!r} ({config.env.robot}, {config.env.mode})"
+                if config.env.is_maze
+                else f"{config.env.id}"
+            )
             bar.write(
-                f"training {strategy.name} in maze {config.env.maze!r} "
-                f"({config.env.robot}, {config.env.mode}), seed {seed}: up to "
+                f"training {strategy.name} in {where}, seed {seed}: up to "
                 f"{config.episodes} episodes"
                 + (f" or {budget:g} s" if budget else "")
                 + f"; optimal {optimal:g} steps",
@@ -402,7 +427,7 @@ def cmd_train(args: argparse.Namespace) -> int:
             bar.update(1)
             bar.set_postfix(avg_steps=f"{np.mean(recent[-100:]):.0f}", leaves=row[5], refresh=False)
 
-        result = train_and_save(config, seed, out, on_start, on_episode)
+        result = job.run(on_start, on_episode)
     _print_training_summary(result)
     return 0
 
@@ -429,7 +454,8 @@ def _print_training_summary(result: Any) -> None:
     outcome = "reached the goal" if result.greedy.success else "did not reach the goal"
     print(f"greedy policy: {outcome} in {result.greedy.steps} steps")
     print(f"leaves: {result.leaves}")
-    print(f"results: {result.out}/ (episodes.csv, learning_curve.png, partition.png, agent.npz)")
+    written = ", ".join(sorted(p.name for p in result.out.iterdir() if p.is_file()))
+    print(f"results: {result.out}/ ({written})")
 
 
 def cmd_default(args: argparse.Namespace) -> int:
@@ -439,51 +465,58 @@ def cmd_default(args: argparse.Namespace) -> int:
 
 def cmd_experiment(args: argparse.Namespace) -> int:
     """Run (or resume) an experiment file in parallel, then write its report."""
-    config = config_module.load_config(args.config)
     from tqdm import tqdm
 
-    from experiments import factory, runner
-    from experiments.report import write_report
-
-    file_config = config
-    config = config_module.with_overrides(
-        config,
+    experiment = Experiment.from_file(
+        args.config,
         runs=args.runs,
         episodes=args.episodes,
-        seed=args.seed,
         max_episode_steps=args.max_episode_steps,
+        seed=args.seed,
+        out=args.out,
+        only=args.only,
+        accept_code_change=args.accept_code_change,
+        allowed_env_ids=_allowed(args),
+        results_dir=RESULTS_DIR,
     )
-    out = args.out or RESULTS_DIR / _experiment_folder(file_config, config)
+    config, out = experiment.config, experiment.out
     if not args.report_only:
-        factory.check_agent_params(config)
-        optimal = factory.check_env(config)
-        runner.prepare_folder(config, out)
-        only = runner.select_strategies(config, args.only)
-        todo = runner.pending_runs(config, out, only)
-        total = len(runner.plan(config, only))
+        optimal = experiment.check()
         workers = args.workers or default_workers()
         backend = make_backend(args.backend, workers, args.address)
-        chosen = len(only) if only is not None else len(config.strategies)
-        print(
-            f"{config.name}: {chosen} strategies x {config.runs} runs x "
-            f"{config.episodes} episodes (cap {config.env.max_episode_steps}, optimal "
-            f"{optimal:g} steps); {total - len(todo)} of {total} runs already done; "
-            f"backend {args.backend}, {backend.workers} workers; results in {out}/"
-        )
+        bars: list[Any] = []
+
+        def on_start(state: FolderState) -> None:
+            chosen = len(experiment.only) if experiment.only is not None else len(config.strategies)
+            total, done = len(state.planned), len(state.finished)
+            print(
+                f"{config.name}: {chosen} strategies x {config.runs} runs x "
+                f"{config.episodes} episodes (cap {config.env.max_episode_steps}, optimal "
+                f"{optimal:g} steps); {done} of {total} runs already done; "
+                f"backend {args.backend}, {backend.workers} workers; results in {out}/"
+            )
+            _print_checks("recomputed, their files do not verify", state.invalid)
+            _print_checks("accepted from another code version", state.code_changed)
+            bars.append(
+                tqdm(
+                    total=total,
+                    initial=done,
+                    unit="run",
+                    disable=not args.progress,
+                    dynamic_ncols=True,
+                )
+            )
+
+        def on_result(result: Any) -> None:
+            bars[0].update(1)
+            bars[0].set_postfix(last=result.name, steps_per_s=f"{result.steps_per_second:,.0f}")
+
         start = time.perf_counter()
-        with tqdm(
-            total=total,
-            initial=total - len(todo),
-            unit="run",
-            disable=not args.progress,
-            dynamic_ncols=True,
-        ) as bar:
-
-            def on_result(result: Any) -> None:
-                bar.update(1)
-                bar.set_postfix(last=result.name, steps_per_s=f"{result.steps_per_second:,.0f}")
-
-            computed = runner.run_experiment(config, out, backend, on_result=on_result, only=only)
+        try:
+            computed = experiment.run(backend, on_start=on_start, on_result=on_result)
+        finally:
+            for bar in bars:
+                bar.close()
         elapsed = time.perf_counter() - start
         if computed:
             rate = sum(r.env_steps for r in computed) / sum(r.wall_time_s for r in computed)
@@ -491,24 +524,18 @@ def cmd_experiment(args: argparse.Namespace) -> int:
                 f"computed {len(computed)} runs in {elapsed:.1f} s; {rate:,.0f} steps/s per "
                 f"worker (env + agent)"
             )
-    try:
-        report = write_report(config, out)
-    except ValueError as error:
-        raise ConfigError(str(error)) from None
+    report = experiment.report()
     _print_experiment_summary(report)
     return 0
 
 
-def _experiment_folder(file_config: ExperimentConfig, config: ExperimentConfig) -> str:
-    """``<name>``, with suffixes for overrides that change results (runs may be added)."""
-    name = config.name
-    if config.episodes != file_config.episodes:
-        name += f"__{config.episodes}ep"
-    if config.env.max_episode_steps != file_config.env.max_episode_steps:
-        name += f"__cap{config.env.max_episode_steps}"
-    if config.seed != file_config.seed:
-        name += f"__seed{config.seed}"
-    return name
+def _print_checks(what: str, items: Sequence[tuple[Any, Any]]) -> None:
+    if items:
+        print(f"{len(items)} run(s) {what}:")
+        for spec, check in items[:20]:
+            print(f"  {spec.name}: {check.reason}")
+        if len(items) > 20:
+            print(f"  ... and {len(items) - 20} more")
 
 
 def _print_experiment_summary(report: Any) -> None:
@@ -529,71 +556,32 @@ def _print_experiment_summary(report: Any) -> None:
         f"\nreport: {report.markdown} (figures: "
         f"{', '.join(p.name for p in report.figures)}; table: {report.summary_csv.name})"
     )
+    if report.excluded:
+        print(f"{len(report.excluded)} run(s) left out of the report (listed in it):")
+        for check in report.excluded[:20]:
+            print(f"  {check.name}: {check.status}: {check.reason}")
 
 
-def _load_for_playback(args: argparse.Namespace) -> tuple[Any, ExperimentConfig, Path]:
-    """The saved agent and the environment settings to play it in (its own, then options)."""
-    from experiments import factory
-
-    path = Path(args.agent)
-    if path.is_dir():
-        path = path / "agent.npz"
-    if not path.is_file():
-        raise FileNotFoundError(f"agent file not found: {path}")
-    beside = path.parent / "config.toml"
-    config = config_module.load_config(
-        beside if beside.is_file() and args.config == DEFAULT_CONFIG else args.config
+def _playback(args: argparse.Namespace) -> Playback:
+    return Playback.from_options(
+        args.agent,
+        config=None if args.config == DEFAULT_CONFIG else args.config,
+        env=_env_options(args),
+        allowed_env_ids=_allowed(args),
     )
-    env_changes = {
-        k: v
-        for k, v in (("maze", args.maze), ("robot", args.robot), ("mode", args.mode))
-        if v is not None
-    }
-    config = dataclasses.replace(config, env=dataclasses.replace(config.env, **env_changes))
-    config = config_module.with_overrides(config, max_episode_steps=args.max_episode_steps)
-    try:
-        agent = factory.load_agent(path)
-    except (ValueError, OSError) as error:
-        raise ConfigError(f"{path}: cannot load the agent: {error}") from None
-    return agent, config, path
-
-
-def _playback_env(agent: Any, config: ExperimentConfig, render_mode: str | None = None) -> Any:
-    """The environment, projected to the agent's observation dimensions when it has more."""
-    from experiments import factory
-
-    env = factory.make_experiment_env(config, render_mode)
-    dims = agent.observation_space.shape[0]
-    given = int(np.prod(env.observation_space.shape or ()))
-    if given > dims:
-        env = factory.ProjectObservation(env, dims)
-    elif given < dims:
-        env.close()
-        raise ConfigError(
-            f"the agent observes {dims} values but robot {config.env.robot!r} gives {given}"
-        )
-    return env
 
 
 def cmd_evaluate(args: argparse.Namespace) -> int:
     """Greedy episodes of a saved agent; success rate and steps."""
-    from experiments import factory
-    from experiments.evaluation import evaluate
-
-    agent, config, path = _load_for_playback(args)
-    env = _playback_env(agent, config)
-    projected = isinstance(env, factory.ProjectObservation)
-    try:
-        optimal = factory.optimal_steps(env)
-        start = time.perf_counter()
-        result = evaluate(env, agent, args.episodes, seed=args.seed)
-        elapsed = time.perf_counter() - start
-    finally:
-        env.close()
+    playback = _playback(args)
+    measured = playback.evaluate(args.episodes, seed=args.seed)
+    result, env, optimal = measured.evaluation, playback.env_spec, measured.optimal_steps
     steps = result.steps
+    where = f"maze {env.maze!r}, robot {env.robot!r}, mode {env.mode!r}" if env.is_maze else env.id
+    projected = measured.projected
     print(
-        f"{path}: {args.episodes} greedy episodes in maze {config.env.maze!r}, robot "
-        f"{config.env.robot!r}, mode {config.env.mode!r} (cap {config.env.max_episode_steps})"
+        f"{playback.path}: {args.episodes} greedy episodes in {where} "
+        f"(cap {env.max_episode_steps})"
         + ("; observation projected to (x, y), heading dropped" if projected else "")
     )
     print(f"success rate: {result.success_rate:.1%}")
@@ -607,37 +595,18 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     print(f"steps, capped episodes counted at the cap: mean {steps.mean():.1f}")
     print(
         f"collisions per episode: {np.mean([e.collisions for e in result.episodes]):.1f}; "
-        f"{steps.sum() / elapsed:,.0f} steps/s"
+        f"{steps.sum() / max(measured.wall_time_s, 1e-9):,.0f} steps/s"
     )
     return 0
 
 
 def cmd_render(args: argparse.Namespace) -> int:
     """A GIF of one greedy episode over the partition."""
-    from experiments import factory
-    from experiments.animation import render_gif
-    from experiments.evaluation import greedy_episode
-
-    agent, config, path = _load_for_playback(args)
-    env = _playback_env(agent, config)
-    try:
-        episode = greedy_episode(env, agent, seed=args.seed)
-        layout, directions = factory.maze_geometry(env)
-    finally:
-        env.close()
-    out = args.out or path.parent / "episode.gif"
+    playback = _playback(args)
+    out, episode = playback.render(args.out, args.seed, args.fps, args.max_frames)
     outcome = "reached the goal" if episode.success else "did not reach the goal"
-    render_gif(
-        agent,
-        layout,
-        directions,
-        episode.positions,
-        out,
-        fps=args.fps,
-        max_frames=args.max_frames,
-        title=f"{agent.n_leaves} leaves,",
-    )
-    print(f"{out}: {episode.steps} steps, {outcome} ({config.env.robot}, {config.env.mode})")
+    env = playback.env_spec
+    print(f"{out}: {episode.steps} steps, {outcome} ({env.robot}, {env.mode})")
     return 0
 
 

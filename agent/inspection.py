@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from agent.learner import SMDPAgent
+from typing import Protocol
 
 
 @dataclass(frozen=True)
@@ -29,7 +27,24 @@ class LeafInfo:
     """The exploration strategy's epsilon in this leaf."""
 
 
-def describe_leaf(agent: SMDPAgent, leaf: int) -> str:
+class _Partition(Protocol):
+    def render_lines(self, describe_leaf: Callable[[int], str]) -> list[str]: ...
+
+
+class Inspectable(Protocol):
+    """What the functions here read: an agent's leaves and partition (``SMDPAgent`` is one).
+
+    A protocol rather than the learner's class, so that this module does not import the
+    learner that uses it.
+    """
+
+    @property
+    def partition(self) -> _Partition: ...
+
+    def leaf_info(self, leaf: int) -> LeafInfo: ...
+
+
+def describe_leaf(agent: Inspectable, leaf: int) -> str:
     """One line: id, box, Q-bar, counts and epsilon of a leaf."""
     info = agent.leaf_info(leaf)
     box = " x ".join(f"[{lo:.4g}, {hi:.4g})" for lo, hi in zip(info.low, info.high, strict=True))
@@ -37,6 +52,6 @@ def describe_leaf(agent: SMDPAgent, leaf: int) -> str:
     return f"leaf {leaf} {box} Q=[{q}] n={list(info.visits)} eps={info.epsilon:.3f}"
 
 
-def render_partition(agent: SMDPAgent) -> str:
+def render_partition(agent: Inspectable) -> str:
     """Text rendering of the whole partition, one node per line, indented by depth."""
     return "\n".join(agent.partition.render_lines(lambda leaf: describe_leaf(agent, leaf)))

@@ -12,7 +12,7 @@ from __future__ import annotations
 import logging
 from collections.abc import Callable, Sequence
 from os import PathLike
-from typing import Any, Self
+from typing import TYPE_CHECKING, Any, Self
 
 import numpy as np
 from gymnasium import spaces
@@ -25,6 +25,11 @@ from agent.partition import Partition
 from agent.random_stream import UniformStream
 from agent.smdp import epoch_returns, leaf_update
 from agent.spaces import action_count, observation_bounds
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from agent.serialization import SavedAgent
 
 logger = logging.getLogger(__name__)
 
@@ -329,20 +334,116 @@ class SMDPAgent:
         """Text rendering of the partition with each leaf's box, Q-bar and counts."""
         return render_partition(self)
 
-    def save(self, path: str | PathLike[str]) -> None:
-        """Write the agent to ``path`` (``.npz`` of arrays + JSON metadata; never pickle)."""
-        from agent.serialization import save_agent
+    def save(self, path: str | PathLike[str], policy_only: bool = False) -> Path:
+        """Write the agent to ``path`` (``.npz`` of arrays + JSON metadata; never pickle) and
+        return the path written (``.npz`` is added if missing).
 
-        save_agent(self, path)
+        ``policy_only`` leaves out what only continued learning needs, the leaves' error
+        buffers (most of a grown tree's file): that file acts exactly like the full one, but
+        training continued from it starts with empty buffers.
+        """
+        from agent import serialization
+        from agent.exploration import exploration_spec
+
+        partition_arrays, partition_meta = self.partition.to_arrays()
+        if policy_only:
+            partition_arrays = {
+                k: v for k, v in partition_arrays.items() if k not in serialization.LEARNING_ARRAYS
+            }
+        metadata: dict[str, Any] = {
+            "format": serialization.FORMAT,
+            "version": serialization.VERSION,
+            "kind": self.kind,
+            "config": self.config.to_dict(),
+            "observation_space": serialization.space_to_json(self.observation_space),
+            "n_actions": self.n_actions,
+            "bounds": [list(self.bounds[0]), list(self.bounds[1])],
+            "seed": self.seed,
+            "episodes_done": self.episodes_done,
+            "exploration": exploration_spec(self.exploration),
+            "rng": self.uniform.state(),
+            "partition": partition_meta,
+        }
+        if policy_only:
+            metadata["policy_only"] = True
+        arrays: dict[str, Any] = {
+            "q": np.asarray(self.q, dtype=np.float64),
+            "visits": np.asarray(self.visits, dtype=np.int64),
+            **{f"partition.{k}": v for k, v in partition_arrays.items()},
+        }
+        return serialization.write_agent_file(path, metadata, arrays)
 
     @classmethod
     def load(cls, path: str | PathLike[str]) -> Self:
-        """Read an agent written by :meth:`save`; it acts and continues learning identically."""
-        from agent.serialization import load_agent
+        """Read an agent written by :meth:`save` (either file); it acts, and from the full file
+        continues learning, identically. A file that fails any check
+        (``agent.serialization.read_agent_file``) is a ``ValueError`` naming it and the defect.
+        """
+        from agent import serialization
 
-        agent = load_agent(path)
-        if not isinstance(agent, cls):
-            raise ValueError(f"{path} holds a {type(agent).__name__}, not a {cls.__name__}")
+        saved = serialization.read_agent_file(path)
+        kinds: dict[str, type[SMDPAgent]] = {}
+        pending: list[type[SMDPAgent]] = [SMDPAgent]
+        while pending:  # every agent class registers itself by subclassing, under its kind
+            agent_class = pending.pop()
+            kinds.setdefault(agent_class.kind, agent_class)
+            pending += agent_class.__subclasses__()
+        found = kinds.get(saved.kind)
+        if found is None or found is SMDPAgent:
+            raise saved.fail(f"unknown agent kind {saved.kind!r}")
+        if not issubclass(found, cls):
+            raise ValueError(f"{saved.path} holds a {found.__name__}, not a {cls.__name__}")
+        return found.from_state(saved)
+
+    @classmethod
+    def from_state(cls, saved: SavedAgent) -> Self:
+        """The agent of a verified file. A subclass's extra constructor arguments (a grid's
+        ``resolution``) are read from the partition's metadata under the same names."""
+        import inspect
+
+        from agent import serialization
+
+        strategy = serialization.exploration_from_data(
+            saved.exploration_name, saved.exploration_params, f"{saved.path}: metadata exploration"
+        )
+        own = set(inspect.signature(SMDPAgent.__init__).parameters)
+        extra = {
+            name: saved.partition[name]
+            for name in inspect.signature(cls.__init__).parameters
+            if name not in own
+        }
+        try:
+            agent = cls(
+                saved.observation_space,
+                saved.action_space,
+                strategy,
+                saved.seed,
+                saved.config,
+                saved.bounds,
+                **extra,
+            )
+            if saved.partition_arrays:
+                restore = type(agent.partition).from_arrays  # type: ignore[attr-defined]
+                agent.partition = restore(saved.partition_arrays, saved.partition, saved.config)
+            strategy.load_state_dict(saved.exploration_state)
+            agent.uniform.restore(saved.rng)
+        except (
+            TypeError,
+            ValueError,
+            KeyError,
+            IndexError,
+            AttributeError,
+            OverflowError,
+        ) as error:
+            raise saved.fail(f"cannot be restored ({type(error).__name__}: {error})") from None
+        if agent.partition.n_ids != len(saved.q):
+            raise saved.fail("the partition's metadata does not match its arrays")
+        serialization.check_exploration_state(
+            strategy, agent.partition.leaves(), f"{saved.path}: metadata exploration"
+        )
+        agent.q = saved.q.tolist()
+        agent.visits = saved.visits.tolist()
+        agent.episodes_done = saved.episodes_done
         return agent
 
     def __repr__(self) -> str:

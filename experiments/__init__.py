@@ -1,15 +1,28 @@
 """The experiment harness behind ``run.py``.
 
-One small module per concern:
+The front door is three jobs (:mod:`experiments.jobs`), which ``run.py`` only fills from the
+command line and prints from:
 
-- :mod:`experiments.config`: experiment TOML files, loaded and validated into dataclasses;
+- :class:`TrainJob`: one agent, one strategy, one seed, saved and pictured;
+- :class:`Experiment`: strategies x runs into a results folder: ``pending()``, ``run()``,
+  ``report()``;
+- :class:`Playback`: a saved agent evaluated or rendered in an environment.
+
+Behind it, one small module per concern:
+
+- :mod:`experiments.config`: experiment TOML files, validated strictly and bounded;
+- :mod:`experiments.plan`: the runs of an experiment (each with its own environment);
 - :mod:`experiments.seeding`: common random seeds derived with ``numpy.random.SeedSequence``;
 - :mod:`experiments.factory`: builds the environment and the agent of one run;
 - :mod:`experiments.training`: trains one agent and collects its per-episode statistics;
-- :mod:`experiments.single_run`: one agent trained, saved and pictured (``run.py train``);
-- :mod:`experiments.store`: per-run result files written atomically, and resume;
-- :mod:`experiments.backends`: serial, process-pool and Ray executors;
-- :mod:`experiments.runner`: runs an experiment (strategies x runs) on a backend;
+- :mod:`experiments.single_run`: one agent trained, saved and pictured;
+- :mod:`experiments.fingerprint`: fingerprints of every input of a run (layout, robot, env,
+  resolved config, code version);
+- :mod:`experiments.store`: per-run result files with a sidecar that vouches for them;
+- :mod:`experiments.lock`: one writer per results folder;
+- :mod:`experiments.backends`: serial, process-pool and Ray executors that survive a worker's
+  death;
+- :mod:`experiments.runner`: runs an experiment (strategies x runs) on a backend, verified;
 - :mod:`experiments.statistics`: moving averages, bootstrap bands, convergence, IQM, P(improvement);
 - :mod:`experiments.plots`: learning curves and the Figure 4 analog;
 - :mod:`experiments.partition`: the learned partition drawn over the maze;
@@ -22,8 +35,53 @@ The experiment files themselves (``paper_fig4.toml``, ``quick.toml``) live besid
 
 from __future__ import annotations
 
-from pathlib import Path
+import importlib
+from typing import TYPE_CHECKING, Any
 
-EXPERIMENT_DIR = Path(__file__).resolve().parent
+if TYPE_CHECKING:
+    from experiments.backends import BACKENDS, TasksLost, default_workers, make_backend
+    from experiments.config import EXPERIMENT_DIR, MODES, ConfigError
+    from experiments.jobs import EnvOptions, Experiment, Playback, TrainJob
+    from experiments.runner import FolderState
 
-__all__ = ["EXPERIMENT_DIR"]
+_EXPORTS = {
+    "BACKENDS": "experiments.backends",
+    "TasksLost": "experiments.backends",
+    "default_workers": "experiments.backends",
+    "make_backend": "experiments.backends",
+    "EXPERIMENT_DIR": "experiments.config",
+    "MODES": "experiments.config",
+    "ConfigError": "experiments.config",
+    "EnvOptions": "experiments.jobs",
+    "Experiment": "experiments.jobs",
+    "Playback": "experiments.jobs",
+    "TrainJob": "experiments.jobs",
+    "FolderState": "experiments.runner",
+}
+"""The public names and their modules, imported on first use: a worker process that imports
+``experiments.training`` does not pay for the plotting modules the front door also offers."""
+
+__all__ = [
+    "BACKENDS",
+    "EXPERIMENT_DIR",
+    "MODES",
+    "ConfigError",
+    "EnvOptions",
+    "Experiment",
+    "FolderState",
+    "Playback",
+    "TasksLost",
+    "TrainJob",
+    "default_workers",
+    "make_backend",
+]
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _EXPORTS:
+        raise AttributeError(f"module 'experiments' has no attribute {name!r}")
+    return getattr(importlib.import_module(_EXPORTS[name]), name)
+
+
+def __dir__() -> list[str]:
+    return __all__

@@ -3,6 +3,13 @@
 Every backend maps a picklable function over independent tasks and yields the results as they
 finish (in any order); the runner stores each one as it arrives. Results never depend on the
 backend: each task carries its own seeds.
+
+Faults: a worker process that dies (a crash, the OOM killer, a kill) loses only the task it
+was running, which is tried again on a fresh worker up to ``max_retries`` times; the other
+tasks go on. A task that still fails is reported at the end by :class:`TasksLost`, after every
+other result has been yielded. An exception raised *by* a task is not a fault of the worker:
+it propagates at once. When the driver dies, its workers notice within half a second and exit
+(no orphan keeps running or holds memory).
 """
 
 from __future__ import annotations
@@ -11,15 +18,47 @@ import contextlib
 import logging
 import multiprocessing
 import os
+import signal
+import threading
+import time
+import traceback
+from collections import deque
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from dataclasses import dataclass
+from multiprocessing.connection import Connection, wait
 from typing import Any, Protocol, TypeVar
 
 T = TypeVar("T")
 R = TypeVar("R")
 
 BACKENDS = ("process", "ray", "serial")
+DEFAULT_RETRIES = 2
+"""Retries of a task whose worker died (so three attempts in all)."""
 log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class LostTask:
+    """A task given up after its workers died ``attempts`` times."""
+
+    task: Any
+    attempts: int
+    reason: str
+
+
+class TasksLost(RuntimeError):
+    """Some tasks were given up (their workers kept dying); every other result was yielded."""
+
+    def __init__(self, lost: Sequence[LostTask]) -> None:
+        self.lost = tuple(lost)
+        described = "; ".join(f"{_label(item.task)}: {item.reason}" for item in self.lost)
+        super().__init__(
+            f"{len(self.lost)} task(s) lost after their workers died repeatedly: {described}"
+        )
+
+
+def _label(task: Any) -> str:
+    return str(getattr(task, "name", task))
 
 
 class Backend(Protocol):
@@ -75,37 +114,161 @@ def _environment(values: dict[str, str]) -> Iterator[None]:
             os.environ.pop(key, None)
 
 
+WATCH_PERIOD_S = 0.5
+"""How often a worker checks that the process that started it is still alive."""
+
+
+def _watch_parent(parent: int) -> None:
+    while True:
+        time.sleep(WATCH_PERIOD_S)
+        if os.getppid() != parent:  # the driver died: this process was re-parented
+            os._exit(1)
+
+
+def _worker_main(connection: Connection, parent: int) -> None:
+    """A worker: run tasks received on ``connection`` until told to stop or the driver dies."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the driver's to handle
+    threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+    while True:
+        try:
+            message = connection.recv()
+        except (EOFError, OSError):
+            return
+        if message is None:
+            return
+        index, fn, task = message
+        reply: tuple[Any, ...]
+        try:
+            reply = ("ok", index, fn(task))
+        except BaseException as error:  # report it; the driver decides
+            reply = ("error", index, error, traceback.format_exc())
+        try:
+            connection.send(reply)
+        except Exception as error:  # an unpicklable result or exception
+            connection.send(("error", index, RuntimeError(repr(error)), traceback.format_exc()))
+
+
+class _Worker:
+    def __init__(self, context: Any) -> None:
+        self.connection, child = context.Pipe()
+        self.process = context.Process(target=_worker_main, args=(child, os.getpid()), daemon=True)
+        self.process.start()
+        child.close()
+        self.task: int | None = None
+
+    def stop(self, timeout: float = 5.0) -> None:
+        with contextlib.suppress(OSError, ValueError):
+            self.connection.send(None)
+        self.process.join(timeout)
+        if self.process.is_alive():
+            self.process.kill()
+            self.process.join()
+        self.connection.close()
+
+
 class ProcessBackend:
-    """A local ``ProcessPoolExecutor``; one task per worker at a time.
+    """A pool of local worker processes; one task per worker at a time.
 
     Workers are started with ``spawn`` so that none inherits a pybullet client, a thread or a
     lock from the parent; each imports what it needs once and runs many tasks. Each worker
     gets one BLAS/OpenMP thread (:data:`ONE_THREAD`, unless the caller set those variables):
     the parallelism is across runs, and idle thread pools would compete for the cores.
+    A worker that dies costs only its task, retried up to ``max_retries`` times on a new worker.
     """
 
-    def __init__(self, workers: int | None = None, start_method: str = "spawn") -> None:
+    def __init__(
+        self,
+        workers: int | None = None,
+        start_method: str = "spawn",
+        max_retries: int = DEFAULT_RETRIES,
+    ) -> None:
         self.workers = workers or default_workers()
         if self.workers < 1:
             raise ValueError(f"workers must be >= 1, got {self.workers}")
+        if max_retries < 0:
+            raise ValueError(f"max_retries must be >= 0, got {max_retries}")
         self.start_method = start_method
+        self.max_retries = max_retries
 
     def map_unordered(self, fn: Callable[[T], R], tasks: Sequence[T]) -> Iterator[R]:
-        """Yield results as workers finish; cancels what is pending if the consumer stops."""
+        """Yield results as workers finish; stops every worker if the consumer stops."""
         if not tasks:
             return
         context = multiprocessing.get_context(self.start_method)
-        workers = min(self.workers, len(tasks))
-        executor = ProcessPoolExecutor(max_workers=workers, mp_context=context)
+        queue = deque(range(len(tasks)))
+        deaths = [0] * len(tasks)
+        lost: list[LostTask] = []
+        pool: list[_Worker] = []
         try:
-            with _environment(ONE_THREAD):  # workers start on the first submits
-                pending: set[Future[R]] = {executor.submit(fn, task) for task in tasks}
-            while pending:
-                done, pending = wait(pending, return_when=FIRST_COMPLETED)
-                for future in done:
-                    yield future.result()
+            with _environment(ONE_THREAD):
+                pool = [_Worker(context) for _ in range(min(self.workers, len(tasks)))]
+            while queue or any(w.task is not None for w in pool):
+                for slot, worker in enumerate(pool):
+                    if worker.task is not None or not queue:
+                        continue
+                    if not worker.process.is_alive():  # died idle, or after its last reply
+                        worker.stop(timeout=0.0)
+                        with _environment(ONE_THREAD):
+                            worker = pool[slot] = _Worker(context)
+                    worker.task = queue.popleft()
+                    try:
+                        worker.connection.send((worker.task, fn, tasks[worker.task]))
+                    except OSError:  # it died before taking the task: a death like any other
+                        self._bury(worker, tasks, deaths, queue, lost)
+                busy = [w for w in pool if w.task is not None]
+                if not busy:
+                    continue
+                ready = set(wait([w.connection for w in busy] + [w.process.sentinel for w in busy]))
+                for worker in busy:
+                    died = worker.process.sentinel in ready
+                    if worker.connection in ready:
+                        try:
+                            reply = worker.connection.recv()
+                        except (EOFError, OSError):
+                            died = True
+                        else:
+                            worker.task = None
+                            if reply[0] != "ok":
+                                log.error(
+                                    "task %s failed in a worker:\n%s",
+                                    _label(tasks[reply[1]]),
+                                    reply[3],
+                                )
+                                raise reply[2]
+                            yield reply[2]
+                            continue
+                    if died:
+                        self._bury(worker, tasks, deaths, queue, lost)
+            if lost:
+                raise TasksLost(lost)
         finally:
-            executor.shutdown(wait=True, cancel_futures=True)
+            for worker in pool:
+                worker.stop(timeout=0.0 if worker.task is not None else 5.0)
+
+    def _bury(
+        self,
+        worker: _Worker,
+        tasks: Sequence[Any],
+        deaths: list[int],
+        queue: deque[int],
+        lost: list[LostTask],
+    ) -> None:
+        """A worker died: retry its task if it may be, else give it up."""
+        worker.process.join(5.0)
+        if worker.process.is_alive():  # its pipe broke but it lingers: end it
+            worker.process.kill()
+            worker.process.join()
+        code = worker.process.exitcode
+        reason = f"killed by signal {-code}" if code is not None and code < 0 else f"exit {code}"
+        index, worker.task = worker.task, None
+        if index is None:
+            return
+        deaths[index] += 1
+        log.warning("worker running %s died (%s)", _label(tasks[index]), reason)
+        if deaths[index] <= self.max_retries:
+            queue.appendleft(index)
+        else:
+            lost.append(LostTask(tasks[index], deaths[index], f"worker {reason}"))
 
 
 class RayBackend:
@@ -117,7 +280,12 @@ class RayBackend:
     Ray runtime environment). Results come back to this process, which writes all the files.
     """
 
-    def __init__(self, workers: int | None = None, address: str | None = None) -> None:
+    def __init__(
+        self,
+        workers: int | None = None,
+        address: str | None = None,
+        max_retries: int = DEFAULT_RETRIES,
+    ) -> None:
         try:
             import ray
         except ImportError as error:
@@ -125,6 +293,7 @@ class RayBackend:
         self._ray = ray
         self.address = address
         self.workers = workers or default_workers()
+        self.max_retries = max_retries
 
     def _init(self) -> bool:
         """Connect or start Ray; returns whether this backend started it (and must stop it)."""
@@ -146,19 +315,33 @@ class RayBackend:
         return True
 
     def map_unordered(self, fn: Callable[[T], R], tasks: Sequence[T]) -> Iterator[R]:
-        """Submit every task and yield results as ``ray.wait`` reports them."""
+        """Submit every task and yield results as ``ray.wait`` reports them. Ray retries a task
+        whose worker died ``max_retries`` times (exceptions raised by the task are not
+        retried); a task lost after that is reported by :class:`TasksLost` at the end."""
         if not tasks:
             return
         ray = self._ray
         started = self._init()
         pending: list[Any] = []
+        lost: list[LostTask] = []
         try:
-            remote = ray.remote(num_cpus=1, max_retries=0)(_call)
-            pending = [remote.remote(fn, task) for task in tasks]
+            remote = ray.remote(num_cpus=1, max_retries=self.max_retries)(_call)
+            refs = [remote.remote(fn, task) for task in tasks]
+            task_of = {ref: task for ref, task in zip(refs, tasks, strict=True)}
+            pending = list(refs)
             while pending:
                 done, pending = ray.wait(pending, num_returns=1)
                 for ref in done:
-                    yield ray.get(ref)
+                    try:
+                        result = ray.get(ref)
+                    except ray.exceptions.RayTaskError as error:
+                        raise error.as_instanceof_cause() from None
+                    except ray.exceptions.RayError as error:  # the worker or its node died
+                        lost.append(LostTask(task_of[ref], self.max_retries + 1, str(error)))
+                        continue
+                    yield result
+            if lost:
+                raise TasksLost(lost)
         finally:
             for ref in pending:
                 ray.cancel(ref, force=True)
@@ -170,12 +353,17 @@ def _call(fn: Callable[[T], R], task: T) -> R:
     return fn(task)
 
 
-def make_backend(name: str, workers: int | None = None, address: str | None = None) -> Backend:
+def make_backend(
+    name: str,
+    workers: int | None = None,
+    address: str | None = None,
+    max_retries: int = DEFAULT_RETRIES,
+) -> Backend:
     """The backend called ``name`` (``process``, ``ray`` or ``serial``)."""
     if name == "process":
-        return ProcessBackend(workers)
+        return ProcessBackend(workers, max_retries=max_retries)
     if name == "ray":
-        return RayBackend(workers, address)
+        return RayBackend(workers, address, max_retries=max_retries)
     if name == "serial":
         return SerialBackend()
     raise ValueError(f"backend: expected one of {', '.join(BACKENDS)}, got {name!r}")

@@ -1,4 +1,4 @@
-"""Experiment files: TOML loaded and validated into frozen dataclasses.
+"""Experiment files: TOML loaded, validated and bounded into frozen dataclasses.
 
 An experiment file has four parts (``docs/experiments.md`` is the full reference)::
 
@@ -7,52 +7,123 @@ An experiment file has four parts (``docs/experiments.md`` is the full reference
     [agent]                 # agent config fields shared by every strategy (alpha, gamma, ...)
     [[strategy]]            # one table per compared strategy: name, agent, exploration, ...
 
-Every unknown key and every value of the wrong type is reported as a :class:`ConfigError`
-naming the file and the key (``paper_fig4.toml: [strategy.2] exploration_params: ...``).
-Whether agent fields and exploration parameters exist is checked against the agent package
-itself by :func:`experiments.factory.check_agent_params`, which this module does not import so
-that configs can be read without the simulation or the agent installed.
+Everything is checked on load, and every failure is a :class:`ConfigError` naming the file and
+the key (``paper_fig4.toml: [strategy.2] exploration_params epsilon: ...``):
+
+- the document: at most :data:`MAX_CONFIG_BYTES`, UTF-8, nested at most :data:`MAX_DEPTH`
+  deep, every number finite;
+- types strictly (a bool is not a number, a string is not a bool), against this module's
+  dataclasses, ``TreeConfig``'s fields and the exploration classes' annotations
+  (``agent.serialization``), and the environment constructor's annotations;
+- sizes: runs, episodes, the cap, strategies, seeds and names have the bounds below;
+- the environment id: one registered by this project or one of Gymnasium's own (their
+  registrations import no user code), or an id the caller allows explicitly
+  (``run.py --allow-env``). Never an import path (``module:Id``), which would make Gymnasium
+  import that module.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import inspect
+import math
 import re
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cache
 from pathlib import Path
-from typing import Any
+from typing import Any, get_type_hints
 
 import tomli_w
+from gymnasium.envs.registration import load_env_creator, registry
 
-from experiments import EXPERIMENT_DIR
+import bullet_maze
+from agent.serialization import (
+    MAX_GRID_CELLS,
+    check_value,
+    config_from_data,
+    exploration_from_data,
+)
+from bullet_maze.params import MAX_EPISODE_STEPS, MODES
+
+EXPERIMENT_DIR = Path(__file__).resolve().parent
+"""Where the shipped experiment files live (``experiments/*.toml``)."""
 
 AGENT_KINDS = ("tree", "grid")
-MODES = ("kinematic", "dynamic")
+
+MAX_CONFIG_BYTES = 1 << 20
+"""Largest experiment file (1 MiB)."""
+MAX_DEPTH = 16
+"""Deepest nesting of tables and arrays in an experiment file."""
+MAX_RUNS = 10_000
+"""Most runs per strategy (the paper: 30)."""
+MAX_EPISODES = 1_000_000
+"""Most episodes per run (the paper: 4,000)."""
+MAX_EPISODE_CAP = 10_000_000
+"""Largest episode cap, ``max_episode_steps`` (the paper: 5,000)."""
+MAX_STRATEGIES = 200
+"""Most strategies in one experiment."""
+MAX_SEED = 2**32 - 1
+"""Largest seed (run seeds are 32-bit)."""
+MAX_NAME = 100
+"""Longest experiment or strategy name (they name files)."""
+MAX_TEXT = 20_000
+"""Longest description."""
+MAX_STRING = 4096
+"""Longest other string (a path, a name, an id)."""
+MAX_TIME_BUDGET_S = 1e7
+"""Longest wall-clock budget of a ``train`` run, in seconds."""
+
+DEFAULT_ENV_ID = "BulletMaze-v0"
+_MAZE_DEFAULTS = {
+    name: p.default for name, p in inspect.signature(bullet_maze.BulletMazeEnv).parameters.items()
+}
+"""The maze env's own defaults (maze, robot, mode), so that they are written once, there."""
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
+_OWN_KEYS = ("maze", "robot", "mode")
+"""Keyword arguments of the maze env that ``[env]`` sets by name, not in ``[env.params]``."""
 
 
 class ConfigError(ValueError):
-    """A bad experiment file or override; the message names the file and the key."""
+    """A bad experiment file or option; the message names the file and key, or the option."""
 
 
 @dataclass(frozen=True)
 class EnvSpec:
-    """Which environment every run of the experiment trains in."""
+    """Which environment a run trains in.
 
-    id: str = "BulletMaze-v0"
-    """Gymnasium id of the environment (registered by ``import bullet_maze``)."""
-    maze: str = "paper"
-    """Layout name from ``assets/mazes/`` or a path to a layout TOML file."""
-    robot: str = "disc"
-    """``"disc"``, ``"husky"`` or a path to a URDF file."""
-    mode: str = "kinematic"
-    """``"kinematic"`` (fast, exact steps) or ``"dynamic"`` (physics)."""
-    max_episode_steps: int = 5000
-    """Episode cap (section V: 5,000 steps)."""
+    ``maze``, ``robot`` and ``mode`` apply to the maze ids (``BulletMaze-*``) and are None for
+    any other environment (a Gymnasium classic-control task, say).
+    """
+
+    id: str = DEFAULT_ENV_ID
+    """Gymnasium id: a ``BulletMaze-*`` id, a Gymnasium built-in, or one allowed explicitly."""
+    maze: str | None = _MAZE_DEFAULTS["maze"]
+    """Layout name from ``assets/mazes/`` or a path to a layout TOML file (maze ids only)."""
+    robot: str | None = _MAZE_DEFAULTS["robot"]
+    """``"disc"``, ``"husky"`` or a path to a URDF file (maze ids only)."""
+    mode: str | None = _MAZE_DEFAULTS["mode"]
+    """``"kinematic"`` (fast, exact steps) or ``"dynamic"`` (physics) (maze ids only)."""
+    max_episode_steps: int = MAX_EPISODE_STEPS
+    """Episode cap (section V: 5,000 steps); by default the id's registered limit."""
     params: dict[str, Any] = field(default_factory=dict)
     """Extra keyword arguments for the environment's constructor."""
+
+    @property
+    def is_maze(self) -> bool:
+        """Whether this is one of the project's maze environments."""
+        return self.maze is not None
+
+    @property
+    def label(self) -> str:
+        """A short name: the maze's file stem, else the id."""
+        return Path(self.maze).stem if self.maze is not None else self.id
+
+    def make_kwargs(self) -> dict[str, Any]:
+        """The keyword arguments of ``gymnasium.make`` besides the id."""
+        own = {key: getattr(self, key) for key in _OWN_KEYS if getattr(self, key) is not None}
+        return {"max_episode_steps": self.max_episode_steps, **own, **self.params}
 
 
 @dataclass(frozen=True)
@@ -111,17 +182,100 @@ class ExperimentConfig:
         """The baseline strategy's name (the first strategy when none is set)."""
         return self.baseline if self.baseline is not None else self.strategies[0].name
 
-    def strategy(self, name: str) -> StrategySpec:
-        """The strategy called ``name``."""
+    def strategy(self, name: str, option: str | None = None) -> StrategySpec:
+        """The strategy called ``name`` (``option`` names where the name came from)."""
         for spec in self.strategies:
             if spec.name == name:
                 return spec
         known = ", ".join(s.name for s in self.strategies)
-        raise ConfigError(f"{self.source}: no strategy named {name!r} (known: {known})")
+        where = f"option {option}" if option else self.source
+        raise ConfigError(f"{where}: no strategy named {name!r} in {self.source} (known: {known})")
 
     def agent_params(self, spec: StrategySpec) -> dict[str, Any]:
         """Agent config fields of one strategy: the shared table overlaid with its own."""
         return {**self.agent, **spec.config}
+
+
+# --- environment ids ----------------------------------------------------------------------
+
+
+@cache
+def builtin_env_ids() -> frozenset[str]:
+    """Ids that Gymnasium registers itself (their entry points are in ``gymnasium.envs``)."""
+    return frozenset(
+        env_id
+        for env_id, spec in registry.items()
+        if isinstance(spec.entry_point, str) and spec.entry_point.startswith("gymnasium.envs.")
+    )
+
+
+def project_env_ids() -> frozenset[str]:
+    """Ids that this project registers (``import bullet_maze``)."""
+    return frozenset(bullet_maze.ENV_IDS)
+
+
+def check_env_id(env_id: str, where: str, allowed: Collection[str] = ()) -> None:
+    """Refuse an id that is an import path, is not registered, or is neither the project's,
+    Gymnasium's own, nor in ``allowed`` (the ids a user passed with ``--allow-env``)."""
+    if ":" in env_id:
+        raise ConfigError(
+            f"{where}: {env_id!r} is an import path (module:Id), which would make Gymnasium "
+            "import that module; only registered ids are accepted"
+        )
+    if env_id not in registry:
+        raise ConfigError(
+            f"{where}: {env_id!r} is not a registered Gymnasium id (this project registers "
+            f"{', '.join(sorted(project_env_ids()))}; Gymnasium's own, such as CartPole-v1, "
+            "are accepted too)"
+        )
+    if env_id not in project_env_ids() | builtin_env_ids() and env_id not in allowed:
+        raise ConfigError(
+            f"{where}: {env_id!r} is registered by neither this project nor Gymnasium; "
+            f"allow it explicitly with --allow-env {env_id}"
+        )
+
+
+def _is_maze_id(env_id: str) -> bool:
+    spec = registry.get(env_id)
+    return spec is not None and spec.entry_point == bullet_maze.ENTRY_POINT
+
+
+def _constructor(env_id: str) -> tuple[inspect.Signature, dict[str, Any]] | None:
+    """The signature and resolved annotations of an id's environment class (None if unknown)."""
+    entry = registry[env_id].entry_point
+    if not isinstance(entry, str):
+        return None
+    try:
+        creator = load_env_creator(entry)
+        signature = inspect.signature(creator)
+    except (ImportError, AttributeError, TypeError, ValueError):
+        return None
+    target: Any = creator.__init__ if isinstance(creator, type) else creator  # type: ignore[misc]
+    try:
+        hints = get_type_hints(target)
+    except (NameError, TypeError):
+        hints = {}
+    return signature, hints
+
+
+# --- loading ------------------------------------------------------------------------------
+
+
+def text_problem(value: str, limit: int = MAX_STRING) -> str | None:
+    """What is wrong with a string a user gave (None if nothing): too long, or a NUL."""
+    if len(value) > limit:
+        return f"longer than {limit:,} characters"
+    if "\x00" in value:
+        return "holds a NUL character"
+    return None
+
+
+def check_option_text(value: str, option: str) -> str:
+    """A string given on the command line (``ConfigError`` naming the option otherwise)."""
+    problem = text_problem(value)
+    if problem:
+        raise ConfigError(f"option {option}: the value {value[:40]!r}... {problem}")
+    return value
 
 
 def resolve_path(name_or_path: str | Path) -> Path:
@@ -129,6 +283,8 @@ def resolve_path(name_or_path: str | Path) -> Path:
     path = Path(name_or_path)
     if path.is_file():
         return path
+    if path.exists():
+        raise ConfigError(f"experiment file {str(name_or_path)!r} is not a file")
     for candidate in (EXPERIMENT_DIR / path, EXPERIMENT_DIR / f"{path}.toml"):
         if candidate.is_file():
             return candidate
@@ -136,20 +292,58 @@ def resolve_path(name_or_path: str | Path) -> Path:
     raise ConfigError(f"experiment file {str(name_or_path)!r} not found (shipped: {known})")
 
 
-def load_config(name_or_path: str | Path) -> ExperimentConfig:
+def load_config(
+    name_or_path: str | Path, allowed_env_ids: Collection[str] = ()
+) -> ExperimentConfig:
     """Read and validate an experiment file (a path, or a name from ``experiments/``)."""
     path = resolve_path(name_or_path)
     try:
-        with path.open("rb") as handle:
-            data = tomllib.load(handle)
+        size = path.stat().st_size
+        if size > MAX_CONFIG_BYTES:
+            raise ConfigError(f"{path}: {size:,} bytes, at most {MAX_CONFIG_BYTES:,}")
+        raw = path.read_bytes()
+    except OSError as error:
+        raise ConfigError(f"{path}: cannot be read ({error.strerror or error})") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise ConfigError(f"{path}: not UTF-8 text (byte {error.start})") from None
+    data = parse_toml(text, str(path))
+    return parse_config(data, source=str(path), allowed_env_ids=allowed_env_ids)
+
+
+def parse_toml(text: str, source: str) -> dict[str, Any]:
+    """TOML text as data, with errors (bad syntax, too deep) that name ``source``."""
+    if len(text) > MAX_CONFIG_BYTES:
+        raise ConfigError(f"{source}: {len(text):,} characters, at most {MAX_CONFIG_BYTES:,}")
+    if _nesting(text) > 4 * MAX_DEPTH:  # cheap bound before the recursive parser runs
+        raise ConfigError(f"{source}: nested more than {MAX_DEPTH} levels deep")
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
-        raise ConfigError(f"{path}: not valid TOML: {error}") from None
-    return parse_config(data, source=str(path))
+        raise ConfigError(f"{source}: not valid TOML: {error}") from None
+    except RecursionError:
+        raise ConfigError(f"{source}: nested more than {MAX_DEPTH} levels deep") from None
 
 
-def parse_config(data: Mapping[str, Any], source: str = "<config>") -> ExperimentConfig:
+def _nesting(text: str) -> int:
+    """Upper bound of the bracket nesting of TOML text (strings included: only a bound)."""
+    depth = deepest = 0
+    for char in text:
+        if char in "[{":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif char in "]}":
+            depth = max(0, depth - 1)
+    return deepest
+
+
+def parse_config(
+    data: Mapping[str, Any], source: str = "<config>", allowed_env_ids: Collection[str] = ()
+) -> ExperimentConfig:
     """Validate the parsed TOML ``data`` of an experiment; ``source`` names it in errors."""
     reader = _Reader(source)
+    reader.document(data)
     reader.only(data, "", {"experiment", "env", "agent", "strategy"})
     meta = reader.table(data, "experiment", required=True)
     reader.only(
@@ -158,23 +352,18 @@ def parse_config(data: Mapping[str, Any], source: str = "<config>") -> Experimen
         {f.name for f in dataclasses.fields(ExperimentConfig)}
         - {"strategies", "env", "agent", "source"},
     )
-    env_table = reader.table(data, "env")
-    reader.only(env_table, "env", {f.name for f in dataclasses.fields(EnvSpec)})
-    env = EnvSpec(
-        id=reader.value(env_table, "env", "id", str, EnvSpec.id),
-        maze=reader.value(env_table, "env", "maze", str, EnvSpec.maze),
-        robot=reader.value(env_table, "env", "robot", str, EnvSpec.robot),
-        mode=reader.choice(env_table, "env", "mode", MODES, EnvSpec.mode),
-        max_episode_steps=reader.positive(
-            env_table, "env", "max_episode_steps", EnvSpec.max_episode_steps
-        ),
-        params=dict(reader.table(env_table, "env.params")),
-    )
+    env = reader.env(reader.table(data, "env"), allowed_env_ids)
     agent = dict(reader.table(data, "agent"))
+    if agent:
+        _agent_check(lambda: config_from_data(agent, f"{source}: [agent]"))
     raw_strategies = data.get("strategy")
     if not isinstance(raw_strategies, list) or not raw_strategies:
         raise ConfigError(f"{source}: [[strategy]]: at least one strategy table is required")
-    strategies = tuple(reader.strategy(raw, i) for i, raw in enumerate(raw_strategies))
+    if len(raw_strategies) > MAX_STRATEGIES:
+        raise ConfigError(
+            f"{source}: [[strategy]]: {len(raw_strategies)} strategies, at most {MAX_STRATEGIES}"
+        )
+    strategies = tuple(reader.strategy(raw, i, agent) for i, raw in enumerate(raw_strategies))
     names = [s.name for s in strategies]
     for name in names:
         if names.count(name) > 1:
@@ -185,48 +374,109 @@ def parse_config(data: Mapping[str, Any], source: str = "<config>") -> Experimen
             f"{source}: [experiment] baseline: {baseline!r} is not a strategy "
             f"(known: {', '.join(names)})"
         )
-    tolerance = reader.value(meta, "experiment", "convergence_tolerance", (int, float), 0.1)
+    tolerance = reader.number(meta, "experiment", "convergence_tolerance", 0.1)
     if not 0 < tolerance < 1:
         raise ConfigError(
             f"{source}: [experiment] convergence_tolerance: must be in (0, 1), got {tolerance}"
         )
-    budget = reader.value(meta, "experiment", "time_budget_s", (int, float), None)
-    if budget is not None and budget <= 0:
-        raise ConfigError(f"{source}: [experiment] time_budget_s: must be > 0, got {budget}")
-    config = ExperimentConfig(
+    budget = reader.number(meta, "experiment", "time_budget_s", None)
+    if budget is not None and not 0 < budget <= MAX_TIME_BUDGET_S:
+        raise ConfigError(
+            f"{source}: [experiment] time_budget_s: must be in (0, {MAX_TIME_BUDGET_S:g}], "
+            f"got {budget}"
+        )
+    description = reader.value(meta, "experiment", "description", str, "")
+    if len(description) > MAX_TEXT:
+        raise reader.fail("experiment", "description", f"longer than {MAX_TEXT} characters")
+    return ExperimentConfig(
         name=reader.name(meta, "experiment", "name"),
         strategies=strategies,
-        seed=reader.non_negative(meta, "experiment", "seed", 0),
-        runs=reader.positive(meta, "experiment", "runs", 30),
-        episodes=reader.positive(meta, "experiment", "episodes", 4000),
+        seed=reader.bounded(meta, "experiment", "seed", 0, 0, MAX_SEED),
+        runs=reader.bounded(meta, "experiment", "runs", 30, 1, MAX_RUNS),
+        episodes=reader.bounded(meta, "experiment", "episodes", 4000, 1, MAX_EPISODES),
         env=env,
         agent=agent,
         baseline=baseline,
-        smoothing_window=reader.positive(meta, "experiment", "smoothing_window", 50),
-        final_window=reader.positive(meta, "experiment", "final_window", 100),
+        smoothing_window=reader.bounded(
+            meta, "experiment", "smoothing_window", 50, 1, MAX_EPISODES
+        ),
+        final_window=reader.bounded(meta, "experiment", "final_window", 100, 1, MAX_EPISODES),
         convergence_tolerance=float(tolerance),
         time_budget_s=None if budget is None else float(budget),
-        description=reader.value(meta, "experiment", "description", str, ""),
+        description=description,
         source=source,
     )
-    return config
+
+
+_KEY = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+
+
+def parse_assignments(items: Sequence[str], option: str) -> dict[str, Any]:
+    """``KEY=VALUE`` options as data; a value is read as TOML (``0.05``, ``true``,
+    ``"text"``, ``[1, 2]``), and anything that is not TOML is a string (``cn_exponent``)."""
+    values: dict[str, Any] = {}
+    for item in items:
+        key, sep, raw = item.partition("=")
+        key = key.strip()
+        if not sep or not _KEY.match(key):
+            raise ConfigError(f"option {option}: expected KEY=VALUE, got {item[:200]!r}")
+        if key in values:
+            raise ConfigError(f"option {option}: {key} is given twice")
+        if len(raw) > MAX_NAME * 10 or "\n" in raw or "\r" in raw:
+            raise ConfigError(f"option {option}: the value of {key} is too long or has a newline")
+        try:
+            parsed = parse_toml(f"v = {raw}", f"option {option}")
+        except ConfigError:
+            values[key] = raw.strip()
+            continue
+        if set(parsed) != {"v"}:
+            raise ConfigError(f"option {option}: {item!r} is not one KEY=VALUE")
+        try:
+            check_value(parsed["v"], Any, f"option {option} {key}")  # finite, at least
+        except ValueError as error:
+            raise ConfigError(str(error)) from None
+        values[key] = parsed["v"]
+    return values
+
+
+def _agent_check(build: Any) -> Any:
+    try:
+        return build()
+    except ValueError as error:
+        raise ConfigError(str(error)) from None
+
+
+OVERRIDE_BOUNDS = {
+    "runs": (1, MAX_RUNS),
+    "episodes": (1, MAX_EPISODES),
+    "seed": (0, MAX_SEED),
+    "max_episode_steps": (1, MAX_EPISODE_CAP),
+}
+"""The command-line overrides of an experiment and their bounds."""
+
+
+def check_override(key: str, value: Any) -> int:
+    """An integer option within :data:`OVERRIDE_BOUNDS` (the message names ``--key``)."""
+    low, high = OVERRIDE_BOUNDS[key]
+    option = f"--{key.replace('_', '-')}"
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        raise ConfigError(
+            f"option {option}: expected an integer from {low} to {high:,}, got {value!r}"
+        )
+    return value
 
 
 def with_overrides(config: ExperimentConfig, **overrides: int | None) -> ExperimentConfig:
     """A copy with ``runs``/``episodes``/``seed``/``max_episode_steps`` replaced (None keeps)."""
     changes = {k: v for k, v in overrides.items() if v is not None}
+    unknown = set(changes) - set(OVERRIDE_BOUNDS)
+    if unknown:
+        raise ConfigError(f"unknown override(s): {', '.join(sorted(unknown))}")
+    for key, value in changes.items():
+        check_override(key, value)
     env_changes: dict[str, Any] = {}
     if "max_episode_steps" in changes:
         env_changes["max_episode_steps"] = changes.pop("max_episode_steps")
-    for key, value in {**changes, **env_changes}.items():
-        minimum = 0 if key == "seed" else 1
-        if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-            raise ConfigError(
-                f"option --{key.replace('_', '-')}: expected an integer >= {minimum}, got {value!r}"
-            )
-    unknown = set(changes) - {"runs", "episodes", "seed"}
-    if unknown:
-        raise ConfigError(f"unknown override(s): {', '.join(sorted(unknown))}")
     env = dataclasses.replace(config.env, **env_changes) if env_changes else config.env
     fields: dict[str, Any] = {"env": env, **changes}
     return dataclasses.replace(config, **fields)
@@ -248,24 +498,27 @@ def to_dict(config: ExperimentConfig) -> dict[str, Any]:
         meta["baseline"] = config.baseline
     if config.time_budget_s is not None:
         meta["time_budget_s"] = config.time_budget_s
-    env = dataclasses.asdict(config.env)
-    strategies = []
-    for spec in config.strategies:
-        table: dict[str, Any] = {
-            "name": spec.name,
-            "agent": spec.agent,
-            "exploration": spec.exploration,
-        }
-        if spec.exploration_params:
-            table["exploration_params"] = dict(spec.exploration_params)
-        if spec.config:
-            table["config"] = dict(spec.config)
-        if spec.resolution is not None:
-            table["resolution"] = (
-                spec.resolution if isinstance(spec.resolution, int) else list(spec.resolution)
-            )
-        strategies.append(table)
+    env = {k: v for k, v in dataclasses.asdict(config.env).items() if v is not None}
+    strategies = [strategy_to_dict(spec) for spec in config.strategies]
     return {"experiment": meta, "env": env, "agent": dict(config.agent), "strategy": strategies}
+
+
+def strategy_to_dict(spec: StrategySpec) -> dict[str, Any]:
+    """One ``[[strategy]]`` table."""
+    table: dict[str, Any] = {
+        "name": spec.name,
+        "agent": spec.agent,
+        "exploration": spec.exploration,
+    }
+    if spec.exploration_params:
+        table["exploration_params"] = dict(spec.exploration_params)
+    if spec.config:
+        table["config"] = dict(spec.config)
+    if spec.resolution is not None:
+        table["resolution"] = (
+            spec.resolution if isinstance(spec.resolution, int) else list(spec.resolution)
+        )
+    return table
 
 
 def dumps(config: ExperimentConfig) -> str:
@@ -307,6 +560,38 @@ class _Reader:
         prefix = f"[{where}] " if where else ""
         return ConfigError(f"{self.source}: {prefix}{key}: {message}")
 
+    def document(self, data: Any) -> None:
+        """Every number finite, nesting bounded, keys strings (walked without recursion)."""
+        stack: list[tuple[Any, tuple[Any, ...]]] = [(data, ())]
+        while stack:
+            value, path = stack.pop()
+            if len(path) > MAX_DEPTH:
+                raise self.at(path, f"nested more than {MAX_DEPTH} levels")
+            if isinstance(value, float) and not math.isfinite(value):
+                raise self.at(path, f"must be finite, got {value!r}")
+            if isinstance(value, Mapping):
+                for key, item in value.items():
+                    if not isinstance(key, str):
+                        raise self.at(path, f"key {key!r} is not a string")
+                    stack.append((item, (*path, key)))
+            elif isinstance(value, list | tuple):
+                stack += [(item, (*path, i)) for i, item in enumerate(value)]
+
+    def at(self, path: tuple[Any, ...], message: str) -> ConfigError:
+        """An error at a key path, written as the rest of this module writes keys
+        (``[agent] alpha``, ``[strategy.1] config.max_leaves``)."""
+        if len(path) >= 2 and path[0] == "strategy" and isinstance(path[1], int):
+            table, rest = f"strategy.{path[1]}", path[2:]
+        else:
+            table, rest = (str(path[0]) if path else ""), path[1:]
+        key = ".".join(str(k) if not isinstance(k, int) else f"[{k}]" for k in rest)
+        key = key.replace(".[", "[")
+        return (
+            self.fail(table, key or "(table)", message)
+            if table
+            else ConfigError(f"{self.source}: {message}")
+        )
+
     def only(self, table: Mapping[str, Any], where: str, allowed: set[str]) -> None:
         for key in table:
             if key not in allowed:
@@ -341,18 +626,24 @@ class _Reader:
             raise self.fail(where, key, f"expected {_kind_name(kinds)}, got {value!r}")
         if not isinstance(value, kinds):
             raise self.fail(where, key, f"expected {_kind_name(kinds)}, got {value!r}")
+        if isinstance(value, str):
+            problem = text_problem(value, MAX_TEXT if key == "description" else MAX_STRING)
+            if problem:
+                raise self.fail(where, key, problem)
         return value
 
-    def positive(self, table: Mapping[str, Any], where: str, key: str, default: int) -> int:
-        value = self.value(table, where, key, int, default)
-        if value < 1:
-            raise self.fail(where, key, f"must be a positive integer, got {value}")
+    def number(self, table: Mapping[str, Any], where: str, key: str, default: Any) -> Any:
+        value = self.value(table, where, key, (int, float), default)
+        if value is not None and not math.isfinite(value):
+            raise self.fail(where, key, f"must be finite, got {value!r}")
         return value
 
-    def non_negative(self, table: Mapping[str, Any], where: str, key: str, default: int) -> int:
+    def bounded(
+        self, table: Mapping[str, Any], where: str, key: str, default: int, low: int, high: int
+    ) -> int:
         value = self.value(table, where, key, int, default)
-        if value < 0:
-            raise self.fail(where, key, f"must be >= 0, got {value}")
+        if not low <= value <= high:
+            raise self.fail(where, key, f"must be an integer from {low} to {high:,}, got {value:,}")
         return value
 
     def choice(
@@ -367,51 +658,142 @@ class _Reader:
         if key not in table:
             raise self.fail(where, key, "is required")
         value = self.value(table, where, key, str, None)
-        if not _NAME.match(value):
+        if not _NAME.match(value) or len(value) > MAX_NAME:
             raise self.fail(
-                where, key, f"{value!r} must be letters, digits and _ . + - only (it names files)"
+                where,
+                key,
+                f"{value[:MAX_NAME]!r} must be at most {MAX_NAME} letters, digits and _ . + - "
+                "(it names files)",
             )
         return value
 
-    def strategy(self, raw: Any, index: int) -> StrategySpec:
+    def env(self, table: Mapping[str, Any], allowed_env_ids: Collection[str]) -> EnvSpec:
+        self.only(table, "env", {f.name for f in dataclasses.fields(EnvSpec)})
+        env_id = self.value(table, "env", "id", str, DEFAULT_ENV_ID)
+        check_env_id(env_id, f"{self.source}: [env] id", allowed_env_ids)
+        params = dict(self.table(table, "env.params"))
+        registered = registry[env_id]
+        cap = self.bounded(
+            table,
+            "env",
+            "max_episode_steps",
+            registered.max_episode_steps or MAX_EPISODE_STEPS,
+            1,
+            MAX_EPISODE_CAP,
+        )
+        constructor = _constructor(env_id)
+        if constructor is not None:
+            self.env_params(params, constructor, env_id)
+        if not _is_maze_id(env_id):
+            for key in _OWN_KEYS:
+                if key in table:
+                    raise self.fail("env", key, f"only applies to the maze ids, not {env_id!r}")
+            return EnvSpec(env_id, None, None, None, cap, params)
+        defaults = {**_signature_defaults(constructor), **registered.kwargs}
+        return EnvSpec(
+            id=env_id,
+            maze=self.value(table, "env", "maze", str, defaults.get("maze", EnvSpec.maze)),
+            robot=self.value(table, "env", "robot", str, defaults.get("robot", EnvSpec.robot)),
+            mode=self.choice(table, "env", "mode", MODES, defaults.get("mode", MODES[0])),
+            max_episode_steps=cap,
+            params=params,
+        )
+
+    def env_params(
+        self,
+        params: Mapping[str, Any],
+        constructor: tuple[inspect.Signature, dict[str, Any]],
+        env_id: str,
+    ) -> None:
+        """``[env.params]`` against the environment constructor's parameters and annotations."""
+        signature, hints = constructor
+        accepted = {
+            name
+            for name, p in signature.parameters.items()
+            if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)
+        }
+        open_ended = any(p.kind == p.VAR_KEYWORD for p in signature.parameters.values())
+        reserved = {"render_mode", *(_OWN_KEYS if _is_maze_id(env_id) else ())}
+        for key, value in params.items():
+            if key in reserved:
+                raise self.fail(
+                    "env.params",
+                    key,
+                    f"is set by [env] {key}"
+                    if key != "render_mode"
+                    else "is chosen by the command (render), not by the experiment",
+                )
+            if key not in accepted and not open_ended:
+                raise self.fail(
+                    "env.params",
+                    key,
+                    f"{env_id} takes no such argument (it takes "
+                    f"{', '.join(sorted(accepted - reserved))})",
+                )
+            if key in hints:
+                try:
+                    check_value(value, hints[key], f"{self.source}: [env.params] {key}")
+                except ValueError as error:
+                    raise ConfigError(str(error)) from None
+
+    def strategy(self, raw: Any, index: int, agent: Mapping[str, Any]) -> StrategySpec:
         where = f"strategy.{index}"
         if not isinstance(raw, dict):
             raise ConfigError(f"{self.source}: [[strategy]] #{index}: expected a table")
         self.only(raw, where, {f.name for f in dataclasses.fields(StrategySpec)})
-        agent = self.choice(raw, where, "agent", AGENT_KINDS, "tree")
+        name = self.name(raw, where, "name")
+        kind = self.choice(raw, where, "agent", AGENT_KINDS, "tree")
         resolution = raw.get("resolution")
-        if agent == "grid":
+        if kind == "grid":
             if resolution is None:
                 raise self.fail(where, "resolution", 'is required when agent = "grid"')
-            ok = (
-                isinstance(resolution, int) and not isinstance(resolution, bool) and resolution > 0
-            ) or (
-                isinstance(resolution, list)
-                and resolution
-                and all(
-                    isinstance(r, int) and not isinstance(r, bool) and r > 0 for r in resolution
-                )
-            )
-            if not ok:
-                raise self.fail(
-                    where,
-                    "resolution",
-                    f"expected a positive integer or a list of them, got {resolution!r}",
-                )
-            if isinstance(resolution, list):
-                resolution = tuple(resolution)
+            resolution = self.resolution(resolution, where)
         elif resolution is not None:
             raise self.fail(where, "resolution", 'only applies to agent = "grid"')
-        params = self.value(raw, where, "exploration_params", dict, {})
-        config = self.value(raw, where, "config", dict, {})
+        exploration = self.value(raw, where, "exploration", str, "adaptive+tabu")
+        params = dict(self.value(raw, where, "exploration_params", dict, {}))
+        config = dict(self.value(raw, where, "config", dict, {}))
+        prefix = f"{self.source}: [{where}]"
+        _agent_check(lambda: exploration_from_data(exploration, params, f"{prefix} exploration"))
+        if config:
+            _agent_check(lambda: config_from_data(config, f"{prefix} config"))
+        _agent_check(lambda: config_from_data({**agent, **config}, f"{prefix} [agent] + config"))
         return StrategySpec(
-            name=self.name(raw, where, "name"),
-            agent=agent,
-            exploration=self.value(raw, where, "exploration", str, "adaptive+tabu"),
-            exploration_params=dict(params),
-            config=dict(config),
+            name=name,
+            agent=kind,
+            exploration=exploration,
+            exploration_params=params,
+            config=config,
             resolution=resolution,
         )
+
+    def resolution(self, value: Any, where: str) -> int | tuple[int, ...]:
+        items = value if isinstance(value, list) else [value]
+        ok = (
+            bool(items)
+            and len(items) <= 64
+            and all(isinstance(r, int) and not isinstance(r, bool) and r > 0 for r in items)
+        )
+        if not ok:
+            raise self.fail(
+                where, "resolution", f"expected a positive integer or a list of them, got {value!r}"
+            )
+        cells = math.prod(items)
+        if cells > MAX_GRID_CELLS:
+            raise self.fail(where, "resolution", f"{cells:,} cells, at most {MAX_GRID_CELLS:,}")
+        return tuple(items) if isinstance(value, list) else value
+
+
+def _signature_defaults(
+    constructor: tuple[inspect.Signature, dict[str, Any]] | None,
+) -> dict[str, Any]:
+    if constructor is None:
+        return {}
+    return {
+        name: p.default
+        for name, p in constructor[0].parameters.items()
+        if p.default is not inspect.Parameter.empty
+    }
 
 
 def _kind_name(kinds: tuple[type, ...]) -> str:

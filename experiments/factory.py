@@ -1,7 +1,9 @@
 """Build the environment and the agent of a run from an experiment's specs.
 
-``bullet_maze`` and ``agent`` are imported inside the functions, so the rest of the harness
-(configs, statistics, plots, resume) works and is tested without them.
+Everything a user gave has been validated by :mod:`experiments.config` already; the checks here
+are the ones that need the objects themselves (a layout that loads, a robot file that exists,
+an environment that builds, a grid that fits the observation), each reported as a
+:class:`ConfigError` naming where the value came from.
 """
 
 from __future__ import annotations
@@ -14,53 +16,40 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from agent.serialization import check_grid_resolution, config_from_data, exploration_from_data
+from experiments import fingerprint
 from experiments.config import ConfigError, EnvSpec, ExperimentConfig, StrategySpec
 
 
 def make_env(spec: EnvSpec, render_mode: str | None = None, **changes: Any) -> gym.Env:
-    """The experiment's environment (``gymnasium.make`` with its time limit).
+    """The run's environment (``gymnasium.make`` with its time limit).
 
     ``changes`` replace fields of ``spec`` (``mode="dynamic"``, ``robot="husky"``).
     """
-    import bullet_maze  # noqa: F401  (registers the environment ids)
-
     spec = dataclasses.replace(spec, **changes) if changes else spec
-    return gym.make(
-        spec.id,
-        max_episode_steps=spec.max_episode_steps,
-        maze=spec.maze,
-        robot=spec.robot,
-        mode=spec.mode,
-        render_mode=render_mode,
-        **spec.params,
-    )
+    return gym.make(spec.id, render_mode=render_mode, **spec.make_kwargs())
 
 
 def agent_config(config: ExperimentConfig, strategy: StrategySpec) -> Any:
     """The strategy's ``TreeConfig`` (the experiment's ``[agent]`` table under its own)."""
-    from agent import TreeConfig
-
-    params = config.agent_params(strategy)
-    _check_fields(TreeConfig, params, config.source, strategy)
     try:
-        return TreeConfig(**params)
-    except (TypeError, ValueError) as error:
-        raise ConfigError(
-            f"{config.source}: [strategy {strategy.name!r}] agent config: {error}"
-        ) from None
+        return config_from_data(
+            config.agent_params(strategy), f"{config.source}: [strategy {strategy.name!r}]"
+        )
+    except ValueError as error:
+        raise ConfigError(str(error)) from None
 
 
 def make_exploration(config: ExperimentConfig, strategy: StrategySpec) -> Any:
     """The strategy's exploration object (``agent.make_exploration``)."""
-    from agent import make_exploration as build
-
     try:
-        return build(strategy.exploration, **strategy.exploration_params)
-    except (TypeError, ValueError) as error:
-        raise ConfigError(
-            f"{config.source}: [strategy {strategy.name!r}] exploration / "
-            f"exploration_params: {error}"
-        ) from None
+        return exploration_from_data(
+            strategy.exploration,
+            strategy.exploration_params,
+            f"{config.source}: [strategy {strategy.name!r}] exploration",
+        )
+    except ValueError as error:
+        raise ConfigError(str(error)) from None
 
 
 def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env, seed: int) -> Any:
@@ -69,17 +58,18 @@ def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env, s
 
     tree_config = agent_config(config, strategy)
     exploration = make_exploration(config, strategy)
+    where = f"{config.source}: [strategy {strategy.name!r}]"
     try:
         if strategy.agent == "grid":
-            if strategy.resolution is None:
-                raise ValueError('a grid strategy needs "resolution"')
+            dims = int(np.prod(env.observation_space.shape or (1,)))
+            resolution = check_grid_resolution(strategy.resolution, dims, f"{where} resolution")
             return GridAgent(
                 env.observation_space,
                 env.action_space,
                 exploration=exploration,
                 seed=seed,
                 config=tree_config,
-                resolution=strategy.resolution,
+                resolution=resolution,
             )
         return TreeAgent(
             env.observation_space,
@@ -89,55 +79,57 @@ def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env, s
             config=tree_config,
         )
     except (TypeError, ValueError) as error:
-        raise ConfigError(f"{config.source}: [strategy {strategy.name!r}]: {error}") from None
+        message = str(error)
+        raise ConfigError(message if message.startswith(where) else f"{where}: {message}") from None
 
 
-def check_agent_params(config: ExperimentConfig) -> None:
-    """Validate every strategy's agent fields and exploration parameters against ``agent``.
+def env_origins(source: str, options: Mapping[str, str] | None = None) -> dict[str, str]:
+    """Where each environment setting came from, for error messages: the file's ``[env]``
+    table, except the settings an option replaced (``{"maze": "--maze"}``)."""
+    origins = {key: f"{source}: [env] {key}" for key in ("id", "maze", "robot", "mode", "params")}
+    origins["env"] = f"{source}: [env]"
+    for key, option in (options or {}).items():
+        origins[key] = f"option {option}"
+    if options:
+        origins["env"] = f"{source}: [env] with {', '.join(sorted(options.values()))}"
+    return origins
 
-    Raises :class:`ConfigError` naming the file, the strategy and the key; builds nothing
-    heavier than the config dataclass and the exploration object.
-    """
+
+def check_env(spec: EnvSpec, origins: Mapping[str, str]) -> gym.Env:
+    """The environment, built once after its layout and robot were checked on their own, so
+    that an error names the setting it came from (``origins``, see :func:`env_origins`).
+    The caller closes it."""
+    if spec.maze is not None:
+        try:
+            fingerprint.layout_fingerprint(spec.maze)
+        except (TypeError, ValueError, OSError) as error:
+            raise ConfigError(f"{origins['maze']}: {error}") from None
+    if spec.robot is not None:
+        try:
+            fingerprint.robot_file(spec.robot)
+        except (TypeError, ValueError, OSError) as error:
+            raise ConfigError(f"{origins['robot']}: {error}") from None
+    try:
+        return make_env(spec)
+    except (TypeError, ValueError, OSError, gym.error.Error) as error:
+        raise ConfigError(f"{origins['env']}: {error}") from None
+    except Exception as error:  # e.g. pybullet.error on a robot file it cannot load
+        raise ConfigError(
+            f"{origins['env']}: cannot build the environment ({type(error).__name__}: {error})"
+        ) from None
+
+
+def check_agents(config: ExperimentConfig, env: gym.Env) -> None:
+    """Build every strategy's agent once for ``env`` (a grid too fine, a space the agent
+    cannot take: a :class:`ConfigError` naming the strategy)."""
     for strategy in config.strategies:
-        agent_config(config, strategy)
-        make_exploration(config, strategy)
-
-
-def make_experiment_env(config: ExperimentConfig, render_mode: str | None = None) -> gym.Env:
-    """The experiment's environment; a bad maze, robot or parameter is a :class:`ConfigError`
-    naming the file's ``[env]`` table."""
-    try:
-        return make_env(config.env, render_mode)
-    except (TypeError, ValueError, FileNotFoundError, gym.error.Error) as error:
-        raise ConfigError(f"{config.source}: [env]: {error}") from None
-
-
-def check_env(config: ExperimentConfig) -> float:
-    """Build the environment once (bad settings fail here, by name); its optimal steps."""
-    env = make_experiment_env(config)
-    try:
-        return optimal_steps(env)
-    finally:
-        env.close()
+        make_agent(config, strategy, env, seed=0)
 
 
 def optimal_steps(env: gym.Env) -> float:
     """``env.unwrapped.optimal_steps`` (NaN when the environment does not say)."""
     value = getattr(env.unwrapped, "optimal_steps", None)
     return float("nan") if value is None else float(value)
-
-
-def _check_fields(
-    config_class: type, params: Mapping[str, Any], source: str, strategy: StrategySpec
-) -> None:
-    known = {f.name for f in dataclasses.fields(config_class)}
-    for key in params:
-        if key not in known:
-            where = "config" if key in strategy.config else "[agent]"
-            raise ConfigError(
-                f"{source}: {where} key {key!r} (strategy {strategy.name!r}) is not a field of "
-                f"{config_class.__name__}; known fields: {', '.join(sorted(known))}"
-            )
 
 
 class ProjectObservation(gym.ObservationWrapper):

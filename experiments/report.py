@@ -4,6 +4,10 @@ Metrics (defined in ``docs/experiments.md``): episodes to convergence, final ste
 ``final_window`` episodes) and their ratio to the optimum, area under the curve, success rate
 (capped episodes count as failures at the cap), leaves, interquartile mean, probability of
 improvement over the baseline, wall time and steps per second.
+
+Only verified runs computed from the experiment's inputs enter it (:func:`runner.inspect_folder`);
+every run left out is listed by name with the reason, and runs accepted despite another code
+version (``--accept-code-change``) are listed as such.
 """
 
 from __future__ import annotations
@@ -16,13 +20,14 @@ import numpy as np
 
 from experiments import plots, store
 from experiments.config import ExperimentConfig
-from experiments.runner import load_results
+from experiments.runner import Task, inspect_folder, results_of
 from experiments.statistics import (
     StrategySummary,
     bootstrap_ci,
     interquartile_mean,
     summarize,
 )
+from experiments.training import train_run
 
 REPORT_FILE = "report.md"
 SUMMARY_FILE = "summary.csv"
@@ -39,13 +44,28 @@ class Report:
     figures: tuple[Path, ...]
     summaries: tuple[StrategySummary, ...]
     optimal_steps: float
+    excluded: tuple[store.RunCheck, ...] = ()
+    """Runs on disk left out (damaged, or computed from other inputs), with the reasons."""
+    accepted: tuple[store.RunCheck, ...] = ()
+    """Runs included although their code version differs (``accept_code_change``)."""
 
 
-def write_report(config: ExperimentConfig, out_dir: Path, seed: int = 0) -> Report:
-    """Compute the statistics of every finished run in ``out_dir`` and write the report."""
-    results = {name: runs for name, runs in load_results(config, out_dir).items() if runs}
+def write_report(
+    config: ExperimentConfig,
+    out_dir: Path,
+    seed: int = 0,
+    task: Task = train_run,
+    accept_code_change: bool = False,
+) -> Report:
+    """Compute the statistics of every finished, verified run in ``out_dir`` and write the
+    report (``task`` is the function that computed the runs: part of their inputs)."""
+    state = inspect_folder(config, out_dir, task, None, accept_code_change)
+    excluded = tuple(check for _, check in state.excluded)
+    accepted = tuple(check for _, check in state.code_changed) if accept_code_change else ()
+    results = {name: runs for name, runs in results_of(config, state).items() if runs}
     if not results:
-        raise ValueError(f"{out_dir}: no finished runs to report")
+        left_out = f"; left out: {_listing(excluded)}" if excluded else ""
+        raise ValueError(f"{out_dir}: no finished runs to report{left_out}")
     optimal = _optimal_steps(results)
     window, final_window = config.smoothing_window, config.final_window
     baseline_runs = results.get(config.baseline_name)
@@ -91,14 +111,41 @@ def write_report(config: ExperimentConfig, out_dir: Path, seed: int = 0) -> Repo
     summary_csv = out_dir / SUMMARY_FILE
     store.atomic_write_text(summary_csv, _summary_csv(summaries, optimal))
     markdown = out_dir / REPORT_FILE
-    store.atomic_write_text(markdown, render_markdown(config, summaries, optimal, seed))
-    return Report(markdown, summary_csv, figures, summaries, optimal)
+    text = render_markdown(config, summaries, optimal, seed) + _provenance(excluded, accepted)
+    store.atomic_write_text(markdown, text)
+    return Report(markdown, summary_csv, figures, summaries, optimal, excluded, accepted)
+
+
+def _listing(checks: tuple[store.RunCheck, ...]) -> str:
+    return "; ".join(f"{c.name} ({c.reason})" for c in checks)
+
+
+def _provenance(excluded: tuple[store.RunCheck, ...], accepted: tuple[store.RunCheck, ...]) -> str:
+    """The report's section on runs left out and runs accepted under another code version."""
+    lines: list[str] = []
+    if accepted:
+        lines += [
+            "## Runs from another code version (accepted)",
+            "",
+            "These runs verify but were computed by another version of the code; they are "
+            "included because the experiment was run with `--accept-code-change`:",
+            "",
+            *(f"- `{c.name}`: {', '.join(c.differences)}" for c in accepted),
+            "",
+        ]
+    if excluded:
+        lines += [
+            "## Runs left out",
+            "",
+            *(f"- `{c.name}`: {c.status}: {c.reason}" for c in excluded),
+            "",
+        ]
+    return "\n".join(lines)
 
 
 def _stack(runs: list[store.RunData], column: str) -> np.ndarray:
-    """Runs x episodes array of one column (runs are cut to the shortest)."""
-    length = min(len(r.columns[column]) for r in runs)
-    return np.stack([r.columns[column][:length] for r in runs]).astype(float)
+    """Runs x episodes array of one column (every verified run has the experiment's episodes)."""
+    return np.stack([r.columns[column] for r in runs]).astype(float)
 
 
 def _optimal_steps(results: dict[str, list[store.RunData]]) -> float:

@@ -1,24 +1,34 @@
-"""Run an experiment: every (strategy, run) pair on a backend, stored as it finishes.
+"""Run an experiment: every (strategy, run) pair on a backend, verified, stored as it finishes.
 
 The results folder holds ``config.toml`` (the resolved experiment, loadable again),
-``runs/<strategy>__<seed>.csv`` (+ ``.json``) for each finished run and, once every run has
-finished, ``episodes.csv`` with all of them in a fixed order. Started again on the same folder,
-an experiment skips every run whose CSV exists; a folder that holds a different experiment
-(anything but the number of runs changed) is refused rather than mixed.
+``runs/<strategy>__<seed>.csv`` + ``.json`` for each finished run and, once every run has
+finished, ``episodes.csv`` with all of them in a fixed order. While an experiment writes, the
+folder is locked (:mod:`experiments.lock`): a second writer is refused and touches nothing.
+
+Started again on the same folder, an experiment first verifies every run it finds
+(:func:`inspect_folder`, :func:`experiments.store.check_run`): a run whose files are damaged,
+cut, edited or unverifiable is reported by name and recomputed; a run computed from other
+inputs (an edited maze, another robot file, other settings) makes the experiment refuse, by
+name, rather than mix; a run whose only difference is the code version is refused too unless
+the caller accepts code changes (``--accept-code-change``, recorded in the report). A folder
+that holds a different experiment (anything but the number of runs changed) is refused.
 """
 
 from __future__ import annotations
 
 import logging
-from collections.abc import Callable, Collection
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from experiments import config as config_module
-from experiments import store
+from experiments import fingerprint, store
 from experiments.backends import Backend, SerialBackend
-from experiments.config import ConfigError, ExperimentConfig, StrategySpec
-from experiments.seeding import run_seed
+from experiments.config import ConfigError, ExperimentConfig
+from experiments.lock import FolderBusyError, FolderLock
+from experiments.plan import RunSpec, plan, select_strategies
+from experiments.training import train_run
 
 log = logging.getLogger(__name__)
 
@@ -26,42 +36,119 @@ CONFIG_FILE = "config.toml"
 RUN_DIR = "runs"
 EPISODES_FILE = "episodes.csv"
 
-
-@dataclass(frozen=True)
-class RunSpec:
-    """One task: a strategy of an experiment and the index of the run (its seeds)."""
-
-    experiment: ExperimentConfig
-    strategy: StrategySpec
-    run_index: int
-    seed: int
-
-    @property
-    def name(self) -> str:
-        """``<strategy>__<seed>``."""
-        return store.run_name(self.strategy.name, self.seed)
-
-
 Task = Callable[[RunSpec], store.RunResult]
 
 
-def plan(config: ExperimentConfig, only: Collection[str] | None = None) -> list[RunSpec]:
-    """Every run of the experiment (of the strategies in ``only``, if given), run index first
-    so that partial results are balanced."""
-    return [
-        RunSpec(config, strategy, index, run_seed(config.seed, index))
-        for index in range(config.runs)
-        for strategy in config.strategies
-        if only is None or strategy.name in only
-    ]
+@dataclass(frozen=True)
+class FolderState:
+    """What a results folder holds of an experiment's runs, each one verified."""
+
+    planned: tuple[RunSpec, ...]
+    """The runs asked for (of the selected strategies), in plan order."""
+    checks: Mapping[str, store.RunCheck]
+    """The verdict on each planned run, by name."""
+    accept_code_change: bool = False
+    """Whether runs that differ only in the code version count as finished."""
+
+    def _with(self, *statuses: str) -> list[tuple[RunSpec, store.RunCheck]]:
+        return [
+            (s, self.checks[s.name]) for s in self.planned if self.checks[s.name].status in statuses
+        ]
+
+    @property
+    def finished(self) -> list[tuple[RunSpec, store.RunCheck]]:
+        """Verified runs that count (those that differ only in code, if accepted)."""
+        return self._with("valid", "code") if self.accept_code_change else self._with("valid")
+
+    @property
+    def pending(self) -> list[RunSpec]:
+        """Runs to compute: never computed, or whose files did not verify."""
+        return [spec for spec, _ in self._with("missing", "invalid")]
+
+    @property
+    def invalid(self) -> list[tuple[RunSpec, store.RunCheck]]:
+        """Runs whose files did not verify (damaged, cut, edited): recomputed."""
+        return self._with("invalid")
+
+    @property
+    def changed(self) -> list[tuple[RunSpec, store.RunCheck]]:
+        """Verified runs computed from other inputs: never mixed with these."""
+        return self._with("changed")
+
+    @property
+    def code_changed(self) -> list[tuple[RunSpec, store.RunCheck]]:
+        """Verified runs whose only difference is the code version."""
+        return self._with("code")
+
+    @property
+    def excluded(self) -> list[tuple[RunSpec, store.RunCheck]]:
+        """Runs on disk that do not count, with the reason in their check."""
+        kinds = (
+            ("invalid", "changed") if self.accept_code_change else ("invalid", "changed", "code")
+        )
+        return self._with(*kinds)
 
 
-def prepare_folder(config: ExperimentConfig, out_dir: Path) -> None:
-    """Create the results folder and record the resolved experiment, refusing a foreign one."""
-    out_dir.mkdir(parents=True, exist_ok=True)
+class _Inputs:
+    """The expected inputs of each run; the environment's fingerprints computed once each."""
+
+    def __init__(self, task: Task) -> None:
+        self.task = task
+        self._env: dict[str, dict[str, str | None]] = {}
+
+    def __call__(self, spec: RunSpec) -> dict[str, Any]:
+        key = repr(spec.env)
+        if key not in self._env:
+            try:
+                self._env[key] = fingerprint.env_inputs(spec.env)
+            except (TypeError, ValueError, OSError) as error:
+                raise ConfigError(f"{spec.experiment.source}: [env]: {error}") from None
+        return fingerprint.run_inputs(
+            spec.experiment, spec.strategy, spec.env, spec.seed, self.task, self._env[key]
+        )
+
+
+def inspect_folder(
+    config: ExperimentConfig,
+    out_dir: Path,
+    task: Task = train_run,
+    only: Collection[str] | None = None,
+    accept_code_change: bool = False,
+) -> FolderState:
+    """Verify every planned run in ``out_dir`` (reads only; writes nothing)."""
+    run_dir = out_dir / RUN_DIR
+    expected = _Inputs(task)
+    specs = tuple(plan(config, only))
+    checks = {
+        spec.name: store.check_run(
+            run_dir, spec.name, config.episodes, spec.env.max_episode_steps, expected(spec)
+        )
+        for spec in specs
+    }
+    return FolderState(specs, checks, accept_code_change)
+
+
+def check_out_dir(out_dir: Path, option: str = "--out") -> None:
+    """A results folder must be a folder (or not exist yet)."""
+    for path in (out_dir, *out_dir.parents):
+        if path.exists() and not path.is_dir():
+            where = "is" if path == out_dir else f"lies under {path}, which is"
+            raise ConfigError(f"option {option}: {out_dir} {where} a file, not a folder")
+
+
+def prepare_folder(
+    config: ExperimentConfig, out_dir: Path, allowed_env_ids: Collection[str] = ()
+) -> None:
+    """Create the results folder and record the resolved experiment, refusing a foreign one.
+    Call it holding the folder's lock (it removes stale temporaries)."""
+    check_out_dir(out_dir)
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise ConfigError(f"option --out: cannot create {out_dir} ({error.strerror})") from None
     recorded = out_dir / CONFIG_FILE
-    if recorded.is_file():
-        previous = config_module.load_config(recorded)
+    if recorded.exists():
+        previous = config_module.load_config(recorded, allowed_env_ids)
         differences = config_module.same_experiment(previous, config)
         if differences:
             raise ConfigError(
@@ -71,35 +158,32 @@ def prepare_folder(config: ExperimentConfig, out_dir: Path) -> None:
         config = config if config.runs >= previous.runs else previous
     store.atomic_write_text(recorded, config_module.dumps(config))
     store.remove_stale_temporaries(out_dir / RUN_DIR)
+    store.remove_stale_temporaries(out_dir)
 
 
-def select_strategies(
-    config: ExperimentConfig, names: Collection[str] | None, option: str = "--only"
-) -> frozenset[str] | None:
-    """Validate a subset of the experiment's strategy names (None: all of them)."""
-    if names is None:
-        return None
-    known = [spec.name for spec in config.strategies]
-    if not names:
-        raise ConfigError(
-            f"option {option}: no strategy named; experiment {config.name!r} has {', '.join(known)}"
-        )
-    unknown = [name for name in names if name not in known]
-    if unknown:
-        raise ConfigError(
-            f"option {option}: unknown strategy {', '.join(map(repr, unknown))} "
-            f"in experiment {config.name!r}; its strategies are "
-            f"{', '.join(known)}"
-        )
-    return frozenset(names)
-
-
-def pending_runs(
-    config: ExperimentConfig, out_dir: Path, only: Collection[str] | None = None
-) -> list[RunSpec]:
-    """The runs of ``config`` (of the strategies in ``only``, if given) not in ``out_dir`` yet."""
-    run_dir = out_dir / RUN_DIR
-    return [spec for spec in plan(config, only) if not store.is_finished(run_dir, spec.name)]
+def refuse_mixing(state: FolderState, out_dir: Path) -> None:
+    """Raise :class:`ConfigError` naming the runs computed from other inputs (or other code,
+    unless accepted)."""
+    problems = state.changed + ([] if state.accept_code_change else state.code_changed)
+    if not problems:
+        return
+    lines = [
+        f"  {spec.name}: {check.reason} ({', '.join(check.differences)})"
+        for spec, check in problems[:20]
+    ]
+    if len(problems) > 20:
+        lines.append(f"  ... and {len(problems) - 20} more")
+    only_code = not state.changed
+    advice = (
+        "accept them with --accept-code-change (recorded in the report) if the change cannot "
+        "alter results, or compute into another --out"
+        if only_code
+        else "compute into another --out, or delete those runs to recompute them"
+    )
+    raise ConfigError(
+        f"{out_dir}: {len(problems)} finished run(s) were computed from other inputs than this "
+        f"experiment's; they are not mixed with new ones:\n" + "\n".join(lines) + f"\n{advice}"
+    )
 
 
 def run_experiment(
@@ -109,44 +193,114 @@ def run_experiment(
     task: Task | None = None,
     on_result: Callable[[store.RunResult], None] | None = None,
     only: Collection[str] | None = None,
+    on_start: Callable[[FolderState], None] | None = None,
+    accept_code_change: bool = False,
+    allowed_env_ids: Collection[str] = (),
 ) -> list[store.RunResult]:
     """Run what is missing of ``config`` in ``out_dir``; returns the runs computed now.
 
     ``task`` computes one run (default: :func:`experiments.training.train_run`; tests pass a
-    stand-in); it must be picklable for the process and Ray backends. ``on_result`` is called
-    in this process after each run has been stored. ``only`` restricts the computation to
-    some strategies (validated by :func:`select_strategies`); the folder stays the whole
-    experiment's, and the rest can be computed later into it.
+    stand-in); it must be picklable for the process and Ray backends. ``on_start(state)`` is
+    called once the folder is locked and verified, before anything is computed;
+    ``on_result`` in this process after each run has been stored. ``only`` restricts the
+    computation to some strategies; the folder stays the whole experiment's, and the rest can
+    be computed later into it.
     """
-    if task is None:
-        from experiments.training import train_run
-
-        task = train_run
+    task = task or train_run
     backend = backend or SerialBackend()
-    prepare_folder(config, out_dir)
     only = select_strategies(config, only)
-    todo = pending_runs(config, out_dir, only)
-    log.info("%s: %d of %d runs to compute", config.name, len(todo), len(plan(config)))
+    check_out_dir(out_dir)
+    try:
+        with FolderLock(out_dir):
+            return _run_locked(
+                config,
+                out_dir,
+                backend,
+                task,
+                on_result,
+                only,
+                on_start,
+                accept_code_change,
+                allowed_env_ids,
+            )
+    except FolderBusyError as error:
+        raise ConfigError(str(error)) from None
+    except OSError as error:
+        if error.filename is None or not Path(error.filename).is_relative_to(out_dir):
+            raise
+        raise ConfigError(f"{out_dir}: cannot write ({error.strerror})") from None
+
+
+def _run_locked(
+    config: ExperimentConfig,
+    out_dir: Path,
+    backend: Backend,
+    task: Task,
+    on_result: Callable[[store.RunResult], None] | None,
+    only: frozenset[str] | None,
+    on_start: Callable[[FolderState], None] | None,
+    accept_code_change: bool,
+    allowed_env_ids: Collection[str],
+) -> list[store.RunResult]:
+    run_dir = out_dir / RUN_DIR
+    prepare_folder(config, out_dir, allowed_env_ids)
+    state = inspect_folder(config, out_dir, task, only, accept_code_change)
+    refuse_mixing(state, out_dir)
+    for spec, check in state.invalid:
+        log.warning("%s does not verify and is recomputed: %s", spec.name, check.reason)
+        store.remove_run(run_dir, spec.name)
+    if on_start is not None:
+        on_start(state)
+    expected = _Inputs(task)
+    log.info("%s: %d of %d runs to compute", config.name, len(state.pending), len(state.planned))
     computed = []
-    for result in backend.map_unordered(task, todo):
-        store.write_run(out_dir / RUN_DIR, result)
+    by_name = {spec.name: spec for spec in state.pending}
+    for result in backend.map_unordered(task, state.pending):
+        wanted = expected(by_name[result.name])
+        inputs = fingerprint.normalized(result.inputs) if result.inputs else wanted
+        found = fingerprint.differences(inputs, wanted)
+        if found:
+            raise ConfigError(
+                f"run {result.name}: its inputs changed while the experiment ran "
+                f"({', '.join(found)}); it was not stored. Finished runs are kept."
+            )
+        store.write_run(run_dir, result, inputs)
         computed.append(result)
         if on_result is not None:
             on_result(result)
-    write_episodes(config, out_dir)
+    write_episodes(config, out_dir, task, accept_code_change)
     return computed
 
 
-def write_episodes(config: ExperimentConfig, out_dir: Path) -> Path | None:
-    """Gather every run of ``config`` into ``episodes.csv`` (strategy order, then run index)."""
-    run_dir = out_dir / RUN_DIR
-    specs = plan(config)
-    if not all(store.is_finished(run_dir, spec.name) for spec in specs):
+def pending_runs(
+    config: ExperimentConfig,
+    out_dir: Path,
+    only: Collection[str] | None = None,
+    task: Task = train_run,
+) -> list[RunSpec]:
+    """The runs of ``config`` (of the strategies in ``only``) that are not finished in
+    ``out_dir`` (missing, or not verifying)."""
+    return inspect_folder(config, out_dir, task, only).pending
+
+
+def write_episodes(
+    config: ExperimentConfig,
+    out_dir: Path,
+    task: Task = train_run,
+    accept_code_change: bool = False,
+) -> Path | None:
+    """Gather every run of ``config`` into ``episodes.csv`` (strategy order, then run index),
+    once every run is finished and verified."""
+    state = inspect_folder(config, out_dir, task, None, accept_code_change)
+    if len(state.finished) != len(state.planned):
         return None
-    ordered = sorted(specs, key=lambda s: (config.strategies.index(s.strategy), s.run_index))
+    order = {spec.name: i for i, spec in enumerate(config.strategies)}
+    ordered = sorted(
+        state.finished, key=lambda item: (order[item[0].strategy.name], item[0].run_index)
+    )
     lines = ["strategy,run,seed," + ",".join(store.COLUMNS)]
-    for spec in ordered:
-        text = store.run_paths(run_dir, spec.name)[0].read_text(encoding="utf-8")
+    for spec, _ in ordered:
+        text = store.run_paths(out_dir / RUN_DIR, spec.name)[0].read_text(encoding="utf-8")
         prefix = f"{spec.strategy.name},{spec.run_index},{spec.seed},"
         lines += [prefix + line for line in text.splitlines()[1:]]
     path = out_dir / EPISODES_FILE
@@ -154,11 +308,21 @@ def write_episodes(config: ExperimentConfig, out_dir: Path) -> Path | None:
     return path
 
 
-def load_results(config: ExperimentConfig, out_dir: Path) -> dict[str, list[store.RunData]]:
-    """The finished runs of each strategy, by run index (missing runs left out)."""
-    run_dir = out_dir / RUN_DIR
+def load_results(
+    config: ExperimentConfig,
+    out_dir: Path,
+    task: Task = train_run,
+    accept_code_change: bool = False,
+) -> dict[str, list[store.RunData]]:
+    """The finished, verified runs of each strategy, by run index (the rest left out)."""
+    state = inspect_folder(config, out_dir, task, None, accept_code_change)
+    return results_of(config, state)
+
+
+def results_of(config: ExperimentConfig, state: FolderState) -> dict[str, list[store.RunData]]:
+    """The verified data of a folder's finished runs, by strategy, in run order."""
     results: dict[str, list[store.RunData]] = {s.name: [] for s in config.strategies}
-    for spec in sorted(plan(config), key=lambda s: s.run_index):
-        if store.is_finished(run_dir, spec.name):
-            results[spec.strategy.name].append(store.read_run(run_dir, spec.name))
+    for spec, check in sorted(state.finished, key=lambda item: item[0].run_index):
+        assert check.data is not None
+        results[spec.strategy.name].append(check.data)
     return results

@@ -1,6 +1,8 @@
 """One agent trained, saved and pictured: the job behind ``run.py train`` and the default job.
 
-The folder it writes: ``episodes.csv`` (the run's CSV, as in an experiment), ``agent.npz``,
+The folder it writes: ``episodes.csv`` (the run's CSV, as in an experiment), ``agent.npz`` (the
+whole agent: training resumes from it exactly), ``policy.npz`` (the policy only: the partition,
+Q-bar and the strategy, a small fraction of the size, acting exactly like ``agent.npz``),
 ``config.toml`` (the one-strategy experiment, resolved), ``meta.json`` (seeds, episodes, whether
 the time budget stopped it, timing, optimum, leaves), ``learning_curve.png`` and
 ``partition.png`` (the partition over the maze with one greedy episode's track).
@@ -9,7 +11,7 @@ the time budget stopped it, timing, optimum, leaves), ``learning_curve.png`` and
 from __future__ import annotations
 
 import json
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -43,17 +45,18 @@ def train_and_save(
     out: Path,
     on_start: Callable[[float], None] | None = None,
     on_episode: Callable[[store.EpisodeRow], None] | None = None,
+    origins: Mapping[str, str] | None = None,
 ) -> SingleRun:
     """Train the first strategy of ``config`` with run seed ``seed`` and write ``out``.
 
     ``on_start(optimal_steps)`` is called once the environment exists, ``on_episode(row)``
     after every episode (a progress bar). Stops at ``config.episodes`` or, if set, after the
-    episode that passes ``config.time_budget_s`` seconds.
+    episode that passes ``config.time_budget_s`` seconds. ``origins`` say where each
+    environment setting came from, for errors (:func:`experiments.factory.env_origins`).
     """
     strategy = config.strategies[0]
     seeds = derive_seeds(seed)
-    factory.check_agent_params(config)
-    env = factory.make_experiment_env(config)
+    env = factory.check_env(config.env, origins or factory.env_origins(config.source))
     try:
         agent = factory.make_agent(config, strategy, env, seeds.agent)
         optimal = factory.optimal_steps(env)
@@ -68,7 +71,7 @@ def train_and_save(
             on_episode=on_episode,
         )
         greedy = greedy_episode(env, agent, seed=seeds.env)
-        layout, directions = factory.maze_geometry(env)
+        geometry = factory.maze_geometry(env) if config.env.is_maze else None
     finally:
         env.close()
     _write(config, seed, seeds, out, training, optimal, agent)
@@ -81,15 +84,15 @@ def train_and_save(
         title=f"{strategy.name}, seed {seed}",
         cap=config.env.max_episode_steps,
     )
-    partition_figure(
-        agent,
-        layout,
-        directions,
-        out / "partition.png",
-        title=f"{strategy.name}: {agent.n_leaves} leaves, greedy actions; "
-        f"greedy episode {greedy.steps} steps",
-        trajectory=greedy.positions,
-    )
+    if geometry is not None:  # the partition drawn over the maze (maze environments only)
+        partition_figure(
+            agent,
+            *geometry,
+            out / "partition.png",
+            title=f"{strategy.name}: {agent.n_leaves} leaves, greedy actions; "
+            f"greedy episode {greedy.steps} steps",
+            trajectory=greedy.positions,
+        )
     return SingleRun(out, training, optimal, agent.n_leaves, greedy)
 
 
@@ -121,3 +124,4 @@ def _write(
     }
     store.atomic_write_text(out / "meta.json", json.dumps(meta, indent=2) + "\n")
     agent.save(out / "agent.npz")
+    agent.save(out / "policy.npz", policy_only=True)

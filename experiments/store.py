@@ -1,31 +1,50 @@
-"""Result files: one CSV per finished run, written atomically, and resume.
+"""Result files: one CSV per finished run and a sidecar that vouches for it, both atomic.
 
-A run ``<strategy>__<seed>`` is finished when ``runs/<strategy>__<seed>.csv`` exists. Files are
-written to a temporary name in the same folder and moved into place with ``os.replace``, so a
-killed experiment leaves either the whole file or none. The CSV holds only what the seed
-determines (bit for bit the same whatever the backend or the number of workers); timings and
-memory go to a JSON sidecar written just before it.
+A run ``<strategy>__<seed>`` is two files in ``runs/``: its CSV (one row per episode, only
+what the seed determines, bit for bit the same whatever the backend or the number of workers)
+and its JSON sidecar, written after the CSV. The sidecar records the CSV's SHA-256 and size,
+the number of episodes, the fingerprint of every input (:mod:`experiments.fingerprint`), the
+run's timings, and a hash of all that, so that a damaged sidecar is found too. A run counts
+as finished only when :func:`check_run` verifies it: the sidecar parses, matches its own hash
+and names the run, the CSV has the recorded size and hash, and its rows are well formed
+(numbered 1..n, integer counts, finite returns, each count in its range, exactly the expected
+number of episodes). Files are written to a temporary name in the same folder and moved into
+place with ``os.replace``, so a killed writer leaves each file whole or absent.
 """
 
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import json
 import os
 import tempfile
-from collections.abc import Iterable, Sequence
+import warnings
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
+
+from experiments import fingerprint
 
 COLUMNS = ("episode", "steps", "return", "success", "truncated", "leaves", "collisions")
 """Columns of a run's CSV, one row per episode."""
 
 EpisodeRow = tuple[int, int, float, bool, bool, int, int]
 """One episode: number (from 1), steps, return, reached the goal, hit the cap, leaves, hits."""
+
+SIDECAR_FORMAT = "bullet_maze.run"
+SIDECAR_VERSION = 2
+"""Version 2 added the data hash and the input fingerprints (version 1 sidecars do not
+verify: their runs are recomputed)."""
+
+MAX_ROW_BYTES = 128
+"""Longest CSV row a run may hold (a row is about 45 bytes)."""
+MAX_SIDECAR_BYTES = 1 << 20
+"""Largest sidecar."""
 
 
 @dataclass(frozen=True)
@@ -40,6 +59,10 @@ class RunResult:
     env_steps: int = 0
     optimal_steps: float = float("nan")
     meta: dict[str, Any] = field(default_factory=dict)
+    inputs: dict[str, Any] = field(default_factory=dict)
+    """Fingerprints of what the run actually used (:func:`experiments.fingerprint.run_inputs`),
+    filled in by the worker; empty when a task does not say (the runner then records the
+    inputs it expected)."""
 
     @property
     def name(self) -> str:
@@ -54,16 +77,39 @@ class RunResult:
 
 @dataclass(frozen=True)
 class RunData:
-    """A run read back from disk, as arrays indexed by episode."""
+    """A run read back from disk and verified, as arrays indexed by episode."""
 
     name: str
     columns: dict[str, np.ndarray]
     meta: dict[str, Any]
+    """The sidecar (timings, ``optimal_steps``, ``inputs``, ...)."""
 
     @property
     def steps(self) -> np.ndarray:
         """Steps of each episode."""
         return self.columns["steps"]
+
+
+Status = Literal["missing", "valid", "invalid", "changed", "code"]
+
+
+@dataclass(frozen=True)
+class RunCheck:
+    """What :func:`check_run` found for one run."""
+
+    name: str
+    status: Status
+    """``missing`` (no files: not computed yet), ``valid``, ``invalid`` (damaged, cut, edited
+    or unverifiable: recompute it), ``changed`` (verified, but computed from other inputs) or
+    ``code`` (verified, and only the code version differs)."""
+    reason: str = ""
+    differences: tuple[str, ...] = ()
+    data: RunData | None = None
+
+    @property
+    def usable(self) -> bool:
+        """Verified and computed from the expected inputs."""
+        return self.status == "valid"
 
 
 def run_name(strategy: str, seed: int) -> str:
@@ -114,42 +160,203 @@ def run_paths(run_dir: Path, name: str) -> tuple[Path, Path]:
     return run_dir / f"{name}.csv", run_dir / f"{name}.json"
 
 
-def write_run(run_dir: Path, result: RunResult) -> Path:
-    """Store a finished run (sidecar first, CSV last: the CSV marks it finished)."""
+def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None = None) -> Path:
+    """Store a finished run: its CSV, then the sidecar that vouches for it (the sidecar marks
+    it finished). ``inputs`` are its fingerprints (default: those the result carries)."""
     csv_path, meta_path = run_paths(run_dir, result.name)
-    meta = {key: value for key, value in asdict(result).items() if key != "rows"}
-    meta["episodes"] = len(result.rows)
-    meta["steps_per_second"] = result.steps_per_second
+    text = format_rows(result.rows)
+    data = text.encode("utf-8")
+    meta = {key: value for key, value in asdict(result).items() if key not in ("rows", "inputs")}
+    meta.update(
+        format=SIDECAR_FORMAT,
+        version=SIDECAR_VERSION,
+        name=result.name,
+        episodes=len(result.rows),
+        steps_per_second=result.steps_per_second,
+        data_sha256=hashlib.sha256(data).hexdigest(),
+        data_bytes=len(data),
+        inputs=dict(inputs if inputs is not None else result.inputs),
+    )
+    meta["sidecar_sha256"] = fingerprint.digest(meta)  # of everything else in it
+    atomic_write_text(csv_path, text)
     atomic_write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True) + "\n")
-    atomic_write_text(csv_path, format_rows(result.rows))
     return csv_path
 
 
-def is_finished(run_dir: Path, name: str) -> bool:
-    """Whether run ``name`` has its CSV (written last and atomically)."""
-    return run_paths(run_dir, name)[0].is_file()
+def remove_run(run_dir: Path, name: str) -> None:
+    """Delete a run's files (to recompute it)."""
+    for path in run_paths(run_dir, name):
+        path.unlink(missing_ok=True)
 
 
-def read_run(run_dir: Path, name: str) -> RunData:
-    """Read a finished run back as column arrays plus its sidecar metadata."""
+def check_run(
+    run_dir: Path,
+    name: str,
+    episodes: int,
+    cap: int,
+    expected_inputs: Mapping[str, Any] | None = None,
+) -> RunCheck:
+    """Verify run ``name`` against its sidecar, its expected ``episodes`` and episode ``cap``,
+    and (if given) the inputs it should have been computed from."""
     csv_path, meta_path = run_paths(run_dir, name)
-    with csv_path.open(newline="", encoding="utf-8") as handle:
-        reader = csv.reader(handle)
-        header = next(reader)
-        if tuple(header) != COLUMNS:
-            raise ValueError(f"{csv_path}: columns {header} differ from {list(COLUMNS)}")
-        values = list(reader)
-    table = np.array(values, dtype=float).reshape(len(values), len(COLUMNS))
-    columns = {}
-    for index, column in enumerate(COLUMNS):
-        data = table[:, index]
-        columns[column] = data if column == "return" else data.astype(np.int64)
-    meta = json.loads(meta_path.read_text(encoding="utf-8")) if meta_path.is_file() else {}
+    if not csv_path.exists() and not meta_path.exists():
+        return RunCheck(name, "missing")
+    try:
+        data = _read_verified(run_dir, name, episodes, cap)
+    except ValueError as error:
+        return RunCheck(name, "invalid", str(error))
+    if expected_inputs is None:
+        return RunCheck(name, "valid", data=data)
+    recorded = data.meta.get("inputs")
+    if not isinstance(recorded, dict):
+        return RunCheck(name, "invalid", f"{meta_path}: no input fingerprints")
+    found = fingerprint.differences(recorded, expected_inputs)
+    if not found:
+        return RunCheck(name, "valid", data=data)
+    status: Status = "code" if fingerprint.only_code_differs(found) else "changed"
+    labels = sorted({fingerprint.INPUT_LABELS[item.split(".")[0]] for item in found})
+    return RunCheck(
+        name, status, "computed with another version of " + ", ".join(labels), tuple(found), data
+    )
+
+
+def read_run(
+    run_dir: Path, name: str, episodes: int | None = None, cap: int | None = None
+) -> RunData:
+    """Read a finished run back as column arrays plus its sidecar, verified (``ValueError``
+    naming the file and the defect otherwise)."""
+    return _read_verified(run_dir, name, episodes, cap)
+
+
+def _read_verified(run_dir: Path, name: str, episodes: int | None, cap: int | None) -> RunData:
+    csv_path, meta_path = run_paths(run_dir, name)
+    meta = _read_sidecar(meta_path, name)
+    recorded = meta["episodes"]
+    if episodes is not None and recorded != episodes:
+        raise ValueError(f"{meta_path}: {recorded} episodes, the experiment has {episodes}")
+    if not csv_path.is_file():
+        raise ValueError(f"{csv_path}: missing (its sidecar exists)")
+    size = csv_path.stat().st_size
+    if size != meta["data_bytes"] or size > MAX_ROW_BYTES * (recorded + 1):
+        raise ValueError(
+            f"{csv_path}: differs from its sidecar ({size} bytes, recorded {meta['data_bytes']}; "
+            "edited, cut or damaged)"
+        )
+    raw = csv_path.read_bytes()
+    if hashlib.sha256(raw).hexdigest() != meta["data_sha256"]:
+        raise ValueError(
+            f"{csv_path}: differs from its sidecar (SHA-256 mismatch; edited or damaged)"
+        )
+    columns = parse_rows(raw, str(csv_path), cap)
+    if len(columns["steps"]) != recorded:
+        raise ValueError(f"{csv_path}: {len(columns['steps'])} rows, its sidecar says {recorded}")
     return RunData(name=name, columns=columns, meta=meta)
 
 
+def _read_sidecar(path: Path, name: str) -> dict[str, Any]:
+    if not path.is_file():
+        raise ValueError(f"{path}: missing (a run is finished only with its sidecar)")
+    if path.stat().st_size > MAX_SIDECAR_BYTES:
+        raise ValueError(f"{path}: larger than {MAX_SIDECAR_BYTES:,} bytes")
+    try:
+        meta = json.loads(path.read_bytes().decode("utf-8"))
+    except (UnicodeDecodeError, ValueError, RecursionError) as error:
+        raise ValueError(f"{path}: not valid JSON ({error})") from None
+    if not isinstance(meta, dict):
+        raise ValueError(f"{path}: not a JSON object")
+    if meta.get("format") != SIDECAR_FORMAT or meta.get("version") != SIDECAR_VERSION:
+        raise ValueError(
+            f"{path}: not a version {SIDECAR_VERSION} run sidecar (no data hash to verify)"
+        )
+    recorded = meta.pop("sidecar_sha256", None)
+    if recorded != fingerprint.digest(meta):
+        raise ValueError(f"{path}: differs from its own recorded hash (edited or damaged)")
+    if meta.get("name") != name:
+        raise ValueError(f"{path}: names run {meta.get('name')!r}, not {name!r}")
+    for key, kind in (("episodes", int), ("data_bytes", int), ("data_sha256", str)):
+        value = meta.get(key)
+        if isinstance(value, bool) or not isinstance(value, kind):
+            raise ValueError(f"{path}: {key} is {value!r}")
+    if meta["episodes"] < 1:
+        raise ValueError(f"{path}: episodes is {meta['episodes']}")
+    return meta
+
+
+_INTEGER_COLUMNS = ("episode", "steps", "success", "truncated", "leaves", "collisions")
+
+
+def parse_rows(raw: bytes, where: str, cap: int | None = None) -> dict[str, np.ndarray]:
+    """A run CSV's columns, after checking every row (``ValueError`` naming ``where``)."""
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise ValueError(f"{where}: not UTF-8 text") from None
+    header, _, body = text.partition("\n")
+    if header != ",".join(COLUMNS):
+        raise ValueError(f"{where}: header {header[:200]!r} differs from {','.join(COLUMNS)!r}")
+    if not body or not body.endswith("\n"):
+        raise ValueError(f"{where}: no rows, or the last row is cut")
+    lines = body[:-1].split("\n")
+    if any(line.count(",") != len(COLUMNS) - 1 for line in lines):
+        bad = next(i for i, line in enumerate(lines) if line.count(",") != len(COLUMNS) - 1)
+        raise ValueError(f"{where}: row {bad + 1} does not have {len(COLUMNS)} fields")
+    try:
+        with warnings.catch_warnings():  # numpy warns or raises at the first non-number
+            warnings.simplefilter("ignore", DeprecationWarning)
+            values = np.fromstring(body.replace("\n", ","), dtype=np.float64, sep=",")
+    except ValueError:
+        values = np.zeros(0)
+    if values.size != len(lines) * len(COLUMNS):
+        raise ValueError(f"{where}: a field is not a number")
+    table = values.reshape(len(lines), len(COLUMNS))
+    if not np.isfinite(table).all():
+        row = int(np.flatnonzero(~np.isfinite(table).all(axis=1))[0])
+        raise ValueError(f"{where}: row {row + 1} holds a value that is not finite")
+    columns: dict[str, np.ndarray] = {}
+    for index, column in enumerate(COLUMNS):
+        values = table[:, index]
+        if column == "return":
+            columns[column] = values
+            continue
+        if (values != np.round(values)).any() or (np.abs(values) > 2**53).any():
+            raise ValueError(f"{where}: column {column!r} holds a value that is not an integer")
+        columns[column] = values.astype(np.int64)
+    _check_ranges(columns, where, cap)
+    return columns
+
+
+def _check_ranges(columns: dict[str, np.ndarray], where: str, cap: int | None) -> None:
+    n = len(columns["episode"])
+    steps = columns["steps"]
+    problems = [
+        ((columns["episode"] != np.arange(1, n + 1)), "episodes are not numbered 1, 2, ..."),
+        (steps < 1, "steps below 1"),
+        (~np.isin(columns["success"], (0, 1)), "success is not 0 or 1"),
+        (~np.isin(columns["truncated"], (0, 1)), "truncated is not 0 or 1"),
+        (
+            (columns["success"] + columns["truncated"]) > 1,
+            "an episode both succeeded and hit the cap",
+        ),
+        (columns["leaves"] < 1, "leaves below 1"),
+        (
+            (columns["collisions"] < 0) | (columns["collisions"] > steps),
+            "collisions outside 0..steps",
+        ),
+    ]
+    if cap is not None:
+        problems += [
+            (steps > cap, f"steps above the cap {cap}"),
+            ((columns["truncated"] == 1) & (steps != cap), f"truncated before the cap {cap}"),
+        ]
+    for bad, message in problems:
+        if bad.any():
+            raise ValueError(f"{where}: row {int(np.flatnonzero(bad)[0]) + 1}: {message}")
+
+
 def remove_stale_temporaries(run_dir: Path) -> int:
-    """Delete temporary files left by a killed writer; returns how many there were."""
+    """Delete temporary files left by a killed writer; returns how many there were. Call it
+    only while holding the folder's lock (:mod:`experiments.lock`): a live writer's
+    temporaries look the same."""
     stale = list(run_dir.glob(".*.tmp")) if run_dir.is_dir() else []
     for path in stale:
         path.unlink(missing_ok=True)

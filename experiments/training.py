@@ -14,14 +14,13 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from experiments import factory
+from experiments import factory, fingerprint
+from experiments.plan import RunSpec
 from experiments.seeding import derive_seeds
 from experiments.store import EpisodeRow, RunResult
 
 if TYPE_CHECKING:
     import gymnasium as gym
-
-    from experiments.runner import RunSpec
 
 
 @dataclass
@@ -106,11 +105,17 @@ def train(
 
 
 def train_run(spec: RunSpec) -> RunResult:
-    """The task of one run: a fresh environment and agent seeded from the run's seed."""
+    """The task of one run: a fresh environment and agent seeded from the run's seed.
+
+    The result carries the fingerprints of the inputs this worker actually used (the layout
+    its environment loaded), which the runner checks against those it expected.
+    """
     experiment, strategy = spec.experiment, spec.strategy
     seeds = derive_seeds(spec.seed)
-    env = factory.make_env(experiment.env)
+    env = factory.make_env(spec.env)
     try:
+        used = fingerprint.env_inputs(spec.env, layout=getattr(env.unwrapped, "layout", None))
+        inputs = fingerprint.run_inputs(experiment, strategy, spec.env, spec.seed, train_run, used)
         agent = factory.make_agent(experiment, strategy, env, seeds.agent)
         rss_start = resident_memory_mb()
         memory_every = max(1, experiment.episodes // 20)
@@ -137,4 +142,5 @@ def train_run(spec: RunSpec) -> RunResult:
             "rss_mb": training.rss_mb,
             "rss_mb_every_episodes": memory_every,
         },
+        inputs=inputs,
     )

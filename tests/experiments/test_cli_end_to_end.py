@@ -19,49 +19,6 @@ from experiments import store
 ROOT = Path(run.__file__).resolve().parent
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
-TINY = """
-[experiment]
-name = "tiny"
-seed = 5
-runs = 2
-episodes = {episodes}
-baseline = "eps"
-smoothing_window = 2
-final_window = 2
-
-[env]
-maze = "paper"
-max_episode_steps = {cap}
-
-[agent]
-alpha = 0.3
-gamma = 0.99
-split_min_samples = 50
-
-[[strategy]]
-name = "eps"
-exploration = "epsilon-greedy"
-exploration_params = {{ epsilon = 0.1 }}
-
-[[strategy]]
-name = "adaptive+tabu"
-exploration = "adaptive+tabu"
-
-[[strategy]]
-name = "grid-6"
-agent = "grid"
-resolution = 6
-exploration = "epsilon-greedy"
-exploration_params = {{ epsilon = 0.1 }}
-"""
-
-
-def tiny_config(folder: Path, episodes: int = 4, cap: int = 120, runs: int = 2) -> Path:
-    """A three-strategy experiment file small enough for a test."""
-    path = folder / "tiny.toml"
-    path.write_text(TINY.format(episodes=episodes, cap=cap).replace("runs = 2", f"runs = {runs}"))
-    return path
-
 
 def assert_png(path: Path) -> None:
     data = path.read_bytes()
@@ -112,6 +69,7 @@ def test_train_writes_its_folder(trained):
         "learning_curve.png",
         "meta.json",
         "partition.png",
+        "policy.npz",
     ]
     rows = read_csv(out / "episodes.csv")
     assert list(rows[0]) == list(store.COLUMNS)
@@ -270,8 +228,8 @@ def test_render_writes_a_gif(trained, tmp_path: Path):
     assert gif.read_bytes()[:6] == b"GIF89a"
 
 
-def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys):
-    config = tiny_config(tmp_path)
+def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys, standins):
+    config = standins.tiny_config(tmp_path)
     for workers in ("1", "2"):
         assert (
             run.main(
@@ -303,8 +261,8 @@ def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys):
     assert "report:" in capsys.readouterr().out
 
 
-def test_experiment_resumes_after_a_kill(tmp_path: Path):
-    config = tiny_config(tmp_path, episodes=30, cap=300, runs=3)
+def test_experiment_resumes_after_a_kill(tmp_path: Path, standins):
+    config = standins.tiny_config(tmp_path, episodes=30, cap=300, runs=3)
     out = tmp_path / "killed"
     command = [
         sys.executable,
@@ -321,11 +279,15 @@ def test_experiment_resumes_after_a_kill(tmp_path: Path):
         command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
     )
     deadline = time.monotonic() + 60
-    while not list((out / "runs").glob("*.csv")) and time.monotonic() < deadline:
+    while not list((out / "runs").glob("*.json")) and time.monotonic() < deadline:
         time.sleep(0.01)
     process.send_signal(signal.SIGKILL)
     process.wait()
-    finished = {p.name: p.stat().st_mtime_ns for p in (out / "runs").glob("*.csv")}
+    # a run is finished once its sidecar is written (after its CSV)
+    finished = {
+        p.with_suffix(".csv").name: p.with_suffix(".csv").stat().st_mtime_ns
+        for p in (out / "runs").glob("*.json")
+    }
     assert 1 <= len(finished) < 9, "the kill came too late to test a resume"
     assert not (out / "episodes.csv").exists()
 
@@ -339,9 +301,9 @@ def test_experiment_resumes_after_a_kill(tmp_path: Path):
     assert (out / "episodes.csv").read_bytes() == (fresh / "episodes.csv").read_bytes()
 
 
-def test_ray_backend_gives_the_same_csv(tmp_path: Path):
+def test_ray_backend_gives_the_same_csv(tmp_path: Path, standins):
     pytest.importorskip("ray")
-    config = tiny_config(tmp_path, runs=1)
+    config = standins.tiny_config(tmp_path, runs=1)
     for backend in ("serial", "ray"):
         assert (
             run.main(
@@ -369,3 +331,49 @@ def test_ray_backend_gives_the_same_csv(tmp_path: Path):
     assert len(meta) == 3
     assert all(m["meta"]["pid"] != os.getpid() for m in meta)
     assert all(np.isfinite(m["steps_per_second"]) for m in meta)
+
+
+CLASSIC = """
+[experiment]
+name = "mc"
+runs = 2
+episodes = 3
+smoothing_window = 2
+final_window = 2
+
+[env]
+id = "MountainCar-v0"
+max_episode_steps = 40
+
+[agent]
+split_min_samples = 20
+
+[[strategy]]
+name = "eps"
+exploration = "epsilon-greedy"
+
+[[strategy]]
+name = "grid"
+agent = "grid"
+resolution = 6
+exploration = "epsilon-greedy"
+"""
+
+
+def test_a_gymnasium_classic_control_experiment_runs(tmp_path: Path, capsys):
+    """Gymnasium's own ids stay usable in experiment files (no maze, robot or mode)."""
+    path = tmp_path / "mc.toml"
+    path.write_text(CLASSIC)
+    out = tmp_path / "out"
+    argv = ["experiment", str(path), "--backend", "serial", "--no-progress", "--out", str(out)]
+    assert run.main(argv) == 0
+    rows = read_csv(out / "episodes.csv")
+    assert len(rows) == 2 * 2 * 3
+    assert all(int(r["steps"]) == 40 and r["truncated"] == "1" for r in rows)
+    assert "maze" not in (out / "config.toml").read_text()
+    train = tmp_path / "train"
+    argv = ["train", "--config", str(path), "--episodes", "2", "--no-progress", "--out", str(train)]
+    assert run.main(argv) == 0
+    assert not (train / "partition.png").exists()
+    assert run.main(["evaluate", str(train), "--episodes", "1"]) == 0
+    assert "in MountainCar-v0 (cap 40)" in capsys.readouterr().out

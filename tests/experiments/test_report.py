@@ -23,7 +23,7 @@ def assert_png(path: Path, min_bytes: int = 5_000) -> None:
 
 def test_report_files_and_table(small_config, standins, tmp_path: Path):
     runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run)
-    report = write_report(small_config, tmp_path)
+    report = write_report(small_config, tmp_path, task=standins.fake_run)
     for figure in report.figures:
         assert_png(figure)
     text = report.markdown.read_text()
@@ -46,5 +46,8 @@ def test_report_of_a_partial_experiment(small_config, standins, tmp_path: Path):
     runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run)
     for path in list((tmp_path / "runs").glob("adaptive+tabu__*.csv"))[:2]:
         path.unlink()
-    report = write_report(small_config, tmp_path)
+    report = write_report(small_config, tmp_path, task=standins.fake_run)
     assert [s.runs for s in report.summaries] == [3, 1]
+    assert len(report.excluded) == 2
+    assert all("missing" in check.reason for check in report.excluded)
+    assert "## Runs left out" in report.markdown.read_text()

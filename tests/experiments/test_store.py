@@ -31,7 +31,7 @@ def test_run_round_trip(tmp_path: Path):
         "eps", 0, 123, rows, wall_time_s=2.0, env_steps=5040, optimal_steps=30.0
     )
     store.write_run(tmp_path, result)
-    assert store.is_finished(tmp_path, "eps__123")
+    assert store.check_run(tmp_path, "eps__123", episodes=2, cap=5000).status == "valid"
     data = store.read_run(tmp_path, "eps__123")
     np.testing.assert_array_equal(data.steps, [40, 5000])
     np.testing.assert_array_equal(data.columns["success"], [1, 0])

@@ -1,0 +1,292 @@
+"""Fingerprints of everything a run's numbers depend on, recorded beside them and checked.
+
+A run is a function of its inputs: the layout, the robot, the environment's registration and
+arguments, the resolved configuration (every agent field and strategy parameter with its
+default filled in, the episodes, the seed) and the code that computes it. Each gets a
+fingerprint here, through one function each:
+
+- :func:`layout_fingerprint`: the layout's canonical content, loaded with
+  ``bullet_maze.load_layout`` (so named, generated and file layouts all work), not the file's
+  bytes: a comment edited in the file leaves it unchanged, a moved goal changes it;
+- :func:`robot_fingerprint`: the bytes of the robot's file (a built-in robot's own URDF);
+- :func:`env_fingerprint`: the id's entry point, registered arguments and every constructor
+  argument with its default;
+- :func:`resolved_config`: the run's settings with every default filled in, so that a changed
+  default shows as a changed setting, not only as changed code;
+- :func:`code_fingerprint`: the source of the modules that compute a run (``agent``,
+  ``bullet_maze``, the harness's training path and the task's own module) as Python syntax
+  trees with docstrings dropped, plus the Python minor version and the versions of numpy,
+  scipy, gymnasium and pybullet. A docstring, comment or formatting change leaves it unchanged;
+  any change to a statement changes it (``docs/experiments.md`` explains the rule).
+"""
+
+from __future__ import annotations
+
+import ast
+import dataclasses
+import hashlib
+import importlib.metadata
+import inspect
+import json
+import sys
+from collections.abc import Callable, Mapping
+from functools import cache
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from experiments.config import EnvSpec, ExperimentConfig, StrategySpec
+
+ROOT = Path(__file__).resolve().parent.parent
+
+RESULT_SOURCES = (
+    "agent",
+    "bullet_maze",
+    "experiments/training.py",
+    "experiments/factory.py",
+    "experiments/seeding.py",
+)
+"""What computes a run's numbers (folders are taken whole), relative to the project root."""
+
+LIBRARIES = ("numpy", "scipy", "gymnasium", "pybullet")
+"""Installed packages whose versions are part of the code fingerprint."""
+
+LAYOUT_IGNORED = ("name", "description", "source")
+"""Layout fields that do not change a run (labels and where it was read from)."""
+
+
+def digest(data: Any) -> str:
+    """SHA-256 of the canonical JSON of ``data`` (sorted keys, exact floats)."""
+    text = json.dumps(data, sort_keys=True, separators=(",", ":"), default=repr)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def layout_content(layout: Any) -> dict[str, Any]:
+    """A ``MazeLayout``'s fields that matter to a run, as plain data."""
+    data = dataclasses.asdict(layout)
+    return {key: value for key, value in data.items() if key not in LAYOUT_IGNORED}
+
+
+def layout_fingerprint(maze: Any) -> str:
+    """Fingerprint of a layout (a name, a path, any spelling ``load_layout`` accepts, or a
+    ``MazeLayout``); raises what ``load_layout`` raises for a bad one."""
+    from bullet_maze import load_layout
+
+    return digest(layout_content(load_layout(maze)))
+
+
+def robot_file(robot: str) -> Path:
+    """The file that defines ``robot``: a built-in robot's own, else the path given."""
+    from bullet_maze import robots
+
+    builtin = {"disc": robots.DISC_URDF, "husky": robots.HUSKY_URDF}
+    if robot in builtin:
+        return Path(builtin[robot])
+    path = Path(robot)
+    if not path.is_file():
+        raise FileNotFoundError(f"robot file not found: {robot}")
+    return path
+
+
+def robot_fingerprint(robot: str) -> str:
+    """SHA-256 of the robot's file."""
+    return hashlib.sha256(robot_file(robot).read_bytes()).hexdigest()
+
+
+def env_fingerprint(spec: EnvSpec) -> str:
+    """Fingerprint of the environment's registration and constructor arguments (defaults in)."""
+    from gymnasium.envs.registration import load_env_creator, registry
+
+    registered = registry[spec.id]
+    entry = registered.entry_point
+    defaults: dict[str, Any] = {}
+    if isinstance(entry, str):
+        creator = load_env_creator(entry)
+        defaults = {
+            name: p.default
+            for name, p in inspect.signature(creator).parameters.items()
+            if p.default is not inspect.Parameter.empty and name != "render_mode"
+        }
+    arguments = {**defaults, **registered.kwargs, **spec.make_kwargs()}
+    arguments.pop("max_episode_steps", None)
+    return digest(
+        {
+            "id": spec.id,
+            "entry_point": entry if isinstance(entry, str) else repr(entry),
+            "max_episode_steps": spec.max_episode_steps,
+            "arguments": arguments,
+        }
+    )
+
+
+def resolved_config(
+    experiment: ExperimentConfig, strategy: StrategySpec, env: EnvSpec, seed: int
+) -> dict[str, Any]:
+    """Every setting of one run, defaults filled in (``TreeConfig`` and the strategy's)."""
+    from agent import TreeConfig
+    from agent.exploration import exploration_spec, make_exploration
+
+    config = TreeConfig(**experiment.agent_params(strategy)).to_dict()
+    params = exploration_spec(make_exploration(strategy.exploration, **strategy.exploration_params))
+    return {
+        "episodes": experiment.episodes,
+        "seed": seed,
+        "env": dataclasses.asdict(env),
+        "agent": strategy.agent,
+        "resolution": strategy.resolution,
+        "exploration": strategy.exploration,
+        "exploration_params": params["params"],
+        "agent_config": config,
+    }
+
+
+def _strip_docstrings(tree: ast.AST) -> ast.AST:
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if isinstance(body, list):
+            kept = [
+                statement
+                for statement in body
+                if not (
+                    isinstance(statement, ast.Expr)
+                    and isinstance(statement.value, ast.Constant)
+                    and isinstance(statement.value.value, str)
+                )
+            ]
+            node.body = kept or [ast.Pass()]  # type: ignore[attr-defined]
+    return tree
+
+
+def source_fingerprint(path: Path) -> str:
+    """SHA-256 of a Python file's syntax tree without docstrings (comments and layout are not
+    in the tree)."""
+    tree = _strip_docstrings(ast.parse(path.read_bytes(), filename=str(path)))
+    return hashlib.sha256(ast.dump(tree).encode("utf-8")).hexdigest()
+
+
+def _source_files(extra: tuple[str, ...]) -> list[Path]:
+    files: set[Path] = set()
+    for entry in RESULT_SOURCES:
+        path = ROOT / entry
+        files |= set(path.rglob("*.py")) if path.is_dir() else {path}
+    for module_file in extra:
+        files.add(Path(module_file).resolve())
+    return sorted(files)
+
+
+@cache
+def _code_fingerprint(extra: tuple[str, ...]) -> dict[str, str]:
+    sources = {
+        (str(p.relative_to(ROOT)) if p.is_relative_to(ROOT) else p.name): source_fingerprint(p)
+        for p in _source_files(extra)
+    }
+    versions = {}
+    for name in LIBRARIES:
+        try:
+            versions[name] = importlib.metadata.version(name)
+        except importlib.metadata.PackageNotFoundError:
+            versions[name] = "not installed"
+    return {
+        "sources": digest(sources),
+        "python": f"{sys.version_info.major}.{sys.version_info.minor}",
+        **versions,
+    }
+
+
+def code_fingerprint(task: Callable[..., Any] | None = None) -> dict[str, str]:
+    """The code version: source fingerprint of :data:`RESULT_SOURCES` (and of ``task``'s
+    module file), Python's minor version and the :data:`LIBRARIES` versions. Computed once per
+    process."""
+    extra: tuple[str, ...] = ()
+    if task is not None:
+        module = sys.modules.get(task.__module__)
+        module_file = getattr(module, "__file__", None)
+        if module_file:
+            extra = (str(Path(module_file).resolve()),)
+    return dict(_code_fingerprint(extra))
+
+
+def task_name(task: Callable[..., Any]) -> str:
+    """``module.function`` of a task."""
+    return f"{task.__module__}.{task.__qualname__}"
+
+
+def normalized(data: Any) -> Any:
+    """``data`` as it reads back from JSON (tuples become lists), so that it compares equal to
+    what a sidecar recorded."""
+    return json.loads(json.dumps(data, default=repr))
+
+
+def env_inputs(env: EnvSpec, layout: Any = None) -> dict[str, str | None]:
+    """The environment's fingerprints: registration and arguments, layout and robot (None for
+    an environment that has none). ``layout`` is the layout an environment actually loaded (a
+    worker passes it); without it the maze is loaded here."""
+    layout_print = None
+    if env.maze is not None:
+        layout_print = (
+            digest(layout_content(layout)) if layout is not None else layout_fingerprint(env.maze)
+        )
+    return {
+        "env": env_fingerprint(env),
+        "layout": layout_print,
+        "robot": robot_fingerprint(env.robot) if env.robot is not None else None,
+    }
+
+
+def run_inputs(
+    experiment: ExperimentConfig,
+    strategy: StrategySpec,
+    env: EnvSpec,
+    seed: int,
+    task: Callable[..., Any],
+    env_prints: Mapping[str, str | None] | None = None,
+) -> dict[str, Any]:
+    """Every input of one run, fingerprinted (``env_prints``: :func:`env_inputs`, if known)."""
+    return {
+        "task": task_name(task),
+        "config": normalized(resolved_config(experiment, strategy, env, seed)),
+        **(env_prints if env_prints is not None else env_inputs(env)),
+        "code": code_fingerprint(task),
+    }
+
+
+INPUT_LABELS = {
+    "task": "the task that computes a run",
+    "config": "the resolved configuration",
+    "env": "the environment's registration or arguments",
+    "layout": "the maze layout",
+    "robot": "the robot's file",
+    "code": "the code version",
+}
+
+
+def differences(recorded: Mapping[str, Any], expected: Mapping[str, Any]) -> list[str]:
+    """The inputs (and, within the configuration and code, the keys) that differ."""
+    found = []
+    for key in INPUT_LABELS:
+        old, new = recorded.get(key), expected.get(key)
+        if old == new:
+            continue
+        if isinstance(old, dict) and isinstance(new, dict):
+            found += [f"{key}.{k}" for k in _differing_keys(old, new)]
+        else:
+            found.append(key)
+    return found
+
+
+def _differing_keys(old: Mapping[str, Any], new: Mapping[str, Any], prefix: str = "") -> list[str]:
+    keys = []
+    for key in sorted(set(old) | set(new)):
+        a, b = old.get(key), new.get(key)
+        if a == b:
+            continue
+        if isinstance(a, dict) and isinstance(b, dict):
+            keys += _differing_keys(a, b, f"{prefix}{key}.")
+        else:
+            keys.append(f"{prefix}{key}")
+    return keys
+
+
+def only_code_differs(found: list[str]) -> bool:
+    """Whether every difference is in the code version."""
+    return bool(found) and all(item == "code" or item.startswith("code.") for item in found)
