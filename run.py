@@ -630,16 +630,16 @@ def _add_layouts_parser(sub: Any) -> None:
 
 
 def cmd_layouts(args: argparse.Namespace) -> int:
-    """A contact sheet of layouts (``experiments.layout_sheet``)."""
-    from experiments.layout_sheet import layout_sheet, suite_sheet
+    """A contact sheet of layouts (``experiments.draw_layout_sheet`` / ``draw_suite_sheet``)."""
+    from experiments import draw_layout_sheet, draw_suite_sheet
 
     if bool(args.mazes) == bool(args.suite) or (args.split and not args.suite):
         raise ConfigError("layouts: give MAZE names or --suite NAME (--split goes with --suite)")
     try:
         if args.suite:
-            path = suite_sheet(args.suite, args.out, args.split)
+            path = draw_suite_sheet(args.suite, args.out, args.split)
         else:
-            path = layout_sheet(args.mazes, args.out)
+            path = draw_layout_sheet(args.mazes, args.out)
     except (TypeError, ValueError) as error:
         raise ConfigError(str(error)) from None
     print(f"wrote {path}")

@@ -4,6 +4,7 @@ Works on any Gymnasium env with a bounded Box observation and Discrete actions; 
 the simulation. See ``docs/paper-notes.md`` for which function implements which equation.
 """
 
+from agent import fast_loop  # noqa: F401  (registers the fast loop with the learner)
 from agent.config import TreeConfig
 from agent.episode_stats import EpisodeStats
 from agent.exploration import (

@@ -64,7 +64,7 @@ from agent.exploration import tabu as tabu_module
 from agent.exploration import vdbe as vdbe_module
 from agent.exploration.base import Exploration
 from agent.grid_agent import GridAgent
-from agent.learner import SMDPAgent
+from agent.learner import SMDPAgent, register_fast_runner
 from agent.partition_tree import PartitionTree
 from agent.random_stream import UniformStream
 from agent.tree_agent import TreeAgent
@@ -1274,3 +1274,6 @@ def _resized(array: np.ndarray, rows: int) -> np.ndarray:
     keep = min(rows, array.shape[0])
     out[:keep] = array[:keep]
     return out
+
+
+register_fast_runner(episode_runner)

@@ -35,6 +35,18 @@ logger = logging.getLogger(__name__)
 
 Bounds = tuple[Sequence[float], Sequence[float]]
 Callback = Callable[[EpisodeStats], bool | None]
+RunnerFactory = Callable[["SMDPAgent", Any], Callable[[Any, Any], EpisodeStats]]
+
+_fast_runner: RunnerFactory | None = None
+"""What ``learn(fast=True)`` asks for each ``learn`` call's episode runner; registered by
+:mod:`agent.fast_loop` (imported by the package, so that this module does not import it: the
+fast loop mirrors the agents and imports them)."""
+
+
+def register_fast_runner(factory: RunnerFactory | None) -> None:
+    """Set the factory ``learn(fast=True)`` uses (None: always the reference loop)."""
+    global _fast_runner
+    _fast_runner = factory
 
 
 class SMDPAgent:
@@ -120,10 +132,8 @@ class SMDPAgent:
                 f"{self.n_actions} actions"
             )
         run_episode: Callable[[Any, Any], EpisodeStats] = self._run_episode
-        if fast and episodes > 0:
-            from agent.fast_loop import episode_runner
-
-            run_episode = episode_runner(self, env)
+        if fast and episodes > 0 and _fast_runner is not None:
+            run_episode = _fast_runner(self, env)
         history: list[EpisodeStats] = []
         for i in range(episodes):
             obs, _ = env.reset(seed=reset_seed if i == 0 else None)

@@ -218,6 +218,9 @@ class BulletMazeEnv(gym.Env[Any, Any]):
       changing the disc's compass rollouts.
     """
 
+    parameter_classes = PARAMS
+    """The dataclasses whose fields are the keyword parameters that ``**params`` takes."""
+
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 30}  # noqa: RUF012
 
     def __init__(

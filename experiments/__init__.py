@@ -28,7 +28,8 @@ Behind it, one small module per concern:
 - :mod:`experiments.partition`: the learned partition drawn over the maze;
 - :mod:`experiments.evaluation`: greedy episodes of a trained agent;
 - :mod:`experiments.animation`: a GIF of one greedy episode;
-- :mod:`experiments.report`: the Markdown report of an experiment.
+- :mod:`experiments.report`: the Markdown report of an experiment;
+- :mod:`experiments.layout_sheet`: contact sheets of layouts with their shortest paths.
 
 The experiment files themselves (``paper_fig4.toml``, ``quick.toml``) live beside these modules.
 """
@@ -42,6 +43,7 @@ if TYPE_CHECKING:
     from experiments.backends import BACKENDS, TasksLost, default_workers, make_backend
     from experiments.config import EXPERIMENT_DIR, MODES, ConfigError
     from experiments.jobs import EnvOptions, Experiment, Playback, TrainJob
+    from experiments.layout_sheet import draw_layout_sheet, draw_suite_sheet
     from experiments.runner import FolderState
 
 _EXPORTS = {
@@ -57,6 +59,8 @@ _EXPORTS = {
     "Playback": "experiments.jobs",
     "TrainJob": "experiments.jobs",
     "FolderState": "experiments.runner",
+    "draw_layout_sheet": "experiments.layout_sheet",
+    "draw_suite_sheet": "experiments.layout_sheet",
 }
 """The public names and their modules, imported on first use: a worker process that imports
 ``experiments.training`` does not pay for the plotting modules the front door also offers."""
@@ -73,6 +77,8 @@ __all__ = [
     "TasksLost",
     "TrainJob",
     "default_workers",
+    "draw_layout_sheet",
+    "draw_suite_sheet",
     "make_backend",
 ]
 

@@ -255,6 +255,17 @@ def _constructor(env_id: str) -> tuple[inspect.Signature, dict[str, Any]] | None
         hints = get_type_hints(target)
     except (NameError, TypeError):
         hints = {}
+    # An env whose constructor takes ``**params`` may name the dataclasses that define them
+    # (``BulletMazeEnv.parameter_classes``): their fields become its keyword parameters here.
+    classes = getattr(creator, "parameter_classes", ())
+    if classes:
+        named = [p for p in signature.parameters.values() if p.kind != p.VAR_KEYWORD]
+        for cls in classes:
+            field_hints = get_type_hints(cls)
+            for field in dataclasses.fields(cls):
+                named.append(inspect.Parameter(field.name, inspect.Parameter.KEYWORD_ONLY))
+                hints[field.name] = field_hints[field.name]
+        signature = signature.replace(parameters=named)
     return signature, hints
 
 

@@ -106,7 +106,7 @@ def check_env(spec: EnvSpec, origins: Mapping[str, str]) -> gym.Env:
             raise ConfigError(f"{origins['maze']}: {error}") from None
     if spec.robot is not None:
         try:
-            fingerprint.robot_file(spec.robot)
+            fingerprint.robot_content(spec.robot)
         except (TypeError, ValueError, OSError) as error:
             raise ConfigError(f"{origins['robot']}: {error}") from None
     try:

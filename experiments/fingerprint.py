@@ -8,7 +8,7 @@ fingerprint here, through one function each:
 - :func:`layout_fingerprint`: the layout's canonical content, loaded with
   ``bullet_maze.load_layout`` (so named, generated and file layouts all work), not the file's
   bytes: a comment edited in the file leaves it unchanged, a moved goal changes it;
-- :func:`robot_fingerprint`: the bytes of the robot's file (a built-in robot's own URDF);
+- :func:`robot_fingerprint`: the robot file's validated fields and its URDF's bytes;
 - :func:`env_fingerprint`: the id's entry point, registered arguments and every constructor
   argument with its default;
 - :func:`resolved_config`: the run's settings with every default filled in, so that a changed
@@ -75,22 +75,26 @@ def layout_fingerprint(maze: Any) -> str:
     return digest(layout_content(load_layout(maze)))
 
 
-def robot_file(robot: str) -> Path:
-    """The file that defines ``robot``: a built-in robot's own, else the path given."""
-    from bullet_maze import robots
+def robot_content(robot: str) -> dict[str, Any]:
+    """A robot's description as plain data: its robot file's validated fields (a built-in name,
+    a ``.toml`` file or a bare URDF, through ``bullet_maze.robots.resolve_robot``) with the URDF
+    given by the SHA-256 of its bytes instead of its path; raises what ``resolve_robot`` raises
+    for a bad one, and ``FileNotFoundError`` for a missing URDF."""
+    from bullet_maze.robots import resolve_robot
 
-    builtin = {"disc": robots.DISC_URDF, "husky": robots.HUSKY_URDF}
-    if robot in builtin:
-        return Path(builtin[robot])
-    path = Path(robot)
-    if not path.is_file():
-        raise FileNotFoundError(f"robot file not found: {robot}")
-    return path
+    spec = resolve_robot(robot)
+    urdf = Path(spec.urdf)
+    if not urdf.is_file():
+        raise FileNotFoundError(f"robot file not found: {urdf}")
+    data = dataclasses.asdict(spec)
+    data.pop("source", None)
+    data["urdf"] = hashlib.sha256(urdf.read_bytes()).hexdigest()
+    return data
 
 
 def robot_fingerprint(robot: str) -> str:
-    """SHA-256 of the robot's file."""
-    return hashlib.sha256(robot_file(robot).read_bytes()).hexdigest()
+    """Fingerprint of the robot: its file's fields and its URDF's bytes (:func:`robot_content`)."""
+    return digest(robot_content(robot))
 
 
 def env_fingerprint(spec: EnvSpec) -> str:

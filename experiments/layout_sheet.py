@@ -21,7 +21,7 @@ MAX_SHEET_LAYOUTS = 100
 """Most layouts on one sheet."""
 
 
-def layout_sheet(
+def draw_layout_sheet(
     specs: Sequence[Any], path: Path, labels: Sequence[str] | None = None, columns: int = 0
 ) -> Path:
     """A PNG of the layouts ``specs`` (anything ``bullet_maze.load_layout`` takes), one panel
@@ -54,7 +54,7 @@ def layout_sheet(
     return save(figure, path)
 
 
-def suite_sheet(name: str, path: Path, split: str | None = None) -> Path:
+def draw_suite_sheet(name: str, path: Path, split: str | None = None) -> Path:
     """The contact sheet of a suite's layouts (both splits, or one)."""
     from bullet_maze import load_suite
 
@@ -62,7 +62,7 @@ def suite_sheet(name: str, path: Path, split: str | None = None) -> Path:
     splits = ("dev", "test") if split is None else (split,)
     specs = [spec for s in splits for spec in suite.split(s)]
     labels = [s for s in splits for _ in suite.split(s)]
-    return layout_sheet(specs, path, labels)
+    return draw_layout_sheet(specs, path, labels)
 
 
 def _short(name: str, width: int = 34) -> str:

@@ -7,13 +7,13 @@ from pathlib import Path
 import pytest
 
 import run
-from experiments.layout_sheet import layout_sheet
+from experiments.layout_sheet import draw_layout_sheet
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
 
 def test_a_sheet_of_layouts_is_a_png(tmp_path: Path) -> None:
-    path = layout_sheet(["open", "maze:seed=1,rows=4,cols=4"], tmp_path / "sheet.png")
+    path = draw_layout_sheet(["open", "maze:seed=1,rows=4,cols=4"], tmp_path / "sheet.png")
     data = path.read_bytes()
     assert data[:8] == PNG_SIGNATURE
     assert len(data) > 10_000

@@ -1,9 +1,8 @@
 """Hostile environment settings given to the harness (experiment files, ``--maze``), and the
 import graph.
 
-Cases the harness refuses itself pass here. Cases that need the simulation to refuse them are
-written as the clear error they should give and marked ``xfail(strict=True)`` with the owner of
-the fix: when it lands, the mark must go (a strict xfail that passes fails the run).
+Each case is written as the clear error it must give, whether the harness or the simulation
+refuses it.
 """
 
 from __future__ import annotations
@@ -17,7 +16,6 @@ from experiments import ConfigError, Experiment
 from experiments.config import EXPERIMENT_DIR, parse_config
 
 ROOT = EXPERIMENT_DIR.parent
-LAYOUTS_HELPER = "layouts helper (issue 8: bounds on env parameters, layout validation)"
 
 BASE = {
     "experiment": {"name": "hostile", "runs": 1, "episodes": 1},
@@ -36,19 +34,16 @@ def test_a_bool_for_the_robot_radius_is_refused(tmp_path: Path):
         _experiment(tmp_path, {"params": {"robot_radius": True}})
 
 
-@pytest.mark.xfail(strict=True, reason=f"needs a bound on render_width: {LAYOUTS_HELPER}")
 def test_a_render_width_that_exhausts_memory_is_refused(tmp_path: Path):
     with pytest.raises(ConfigError, match="render_width"):
         _experiment(tmp_path, {"params": {"render_width": 100_000}}).check()
 
 
-@pytest.mark.xfail(strict=True, reason=f"needs a bound on step_size: {LAYOUTS_HELPER}")
 def test_a_step_size_that_takes_minutes_a_step_is_refused(tmp_path: Path):
     with pytest.raises(ConfigError, match="step_size"):
         _experiment(tmp_path, {"mode": "dynamic", "params": {"step_size": 1e9}}).check()
 
 
-@pytest.mark.xfail(strict=True, reason=f"needs a bound on substeps: {LAYOUTS_HELPER}")
 def test_substeps_that_take_minutes_a_step_are_refused(tmp_path: Path):
     with pytest.raises(ConfigError, match="substeps"):
         _experiment(tmp_path, {"mode": "dynamic", "params": {"substeps": 10**8}}).check()
@@ -66,7 +61,6 @@ radius = 15.0
 """
 
 
-@pytest.mark.xfail(strict=True, reason=f"a start inside the goal is accepted: {LAYOUTS_HELPER}")
 def test_a_maze_whose_start_lies_in_the_goal_is_refused_naming_the_option(tmp_path: Path):
     from experiments import EnvOptions, factory
     from experiments.config import load_config
@@ -78,9 +72,6 @@ def test_a_maze_whose_start_lies_in_the_goal_is_refused_naming_the_option(tmp_pa
         factory.check_env(config.env, origins).close()
 
 
-@pytest.mark.xfail(
-    strict=True, reason=f"an obstacle outside the arena is accepted: {LAYOUTS_HELPER}"
-)
 def test_a_maze_with_an_obstacle_outside_the_arena_is_refused(tmp_path: Path):
     maze = tmp_path / "bad.toml"
     extra = "[[obstacles]]\ncenter = [900.0, 900.0]\nradius = 10.0\n"
@@ -89,9 +80,6 @@ def test_a_maze_with_an_obstacle_outside_the_arena_is_refused(tmp_path: Path):
         _experiment(tmp_path, {"maze": str(maze)}).check()
 
 
-@pytest.mark.xfail(
-    strict=True, reason=f'reset(options={{"start": "99"}}) gives (9, 9): {LAYOUTS_HELPER}'
-)
 def test_a_string_start_in_reset_options_is_refused():
     import bullet_maze
 
@@ -151,8 +139,5 @@ def test_no_import_circles(package: str):
     assert _cycle(_imports(package)) is None
 
 
-@pytest.mark.xfail(
-    strict=True, reason=f"geometry, layout and planning import each other: {LAYOUTS_HELPER}"
-)
 def test_no_import_circles_in_the_simulation():
     assert _cycle(_imports("bullet_maze")) is None
