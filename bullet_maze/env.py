@@ -31,6 +31,7 @@ from bullet_maze.perturbations import (
     Range,
     Setting,
     applies,
+    child_generator,
     draw,
     largest,
     parse_settings,
@@ -204,7 +205,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
 
     Keywords, each `None` (not set) by default; with none set the env is exactly the one
     above, bit for bit, with the same draws from `np_random` (`bullet_maze.perturbations`,
-    `docs/perturbations.md`). Every draw comes from the env's `np_random`.
+    `docs/perturbations.md`).
 
     | keyword | unit | bounds | what it changes (where) |
     |---------|------|--------|-------------------------|
@@ -220,23 +221,25 @@ class BulletMazeEnv(gym.Env[Any, Any]):
     | `heading_noise` | rad (std) | [0, pi] | observed heading, wrapped (a heading) |
     | `lidar_noise` | units (std) | [0, 1000] | readings of rays that hit, clipped (a lidar) |
 
-    A fixed value is a number; a **range** is `[low, high]`, `(low, high)` or
-    `{"low": low, "high": high}` (TOML arrays and inline tables arrive so), and each reset
-    draws the episode's value uniformly from `np_random` (integers inclusive for
-    `latency_steps`), one draw per randomised keyword in the order of the table, only for
-    ranges. A perturbation where it means nothing (a mass in kinematic mode, motors of a
+    A fixed value is a number; a **range** is `[low, high]`, `(low, high)` or `{"low": low,
+    "high": high}` (TOML arrays and inline tables arrive so), and each reset draws the episode's
+    value uniformly (integers inclusive for `latency_steps`), one draw per randomised keyword in
+    the order of the table, only for ranges. These draws and the observation and lidar noise
+    come from a generator derived from `np_random`'s seed sequence without drawing from it
+    (`perturbations.child_generator`), so the same seed gives the same draws and the same action
+    noise as without perturbations (a randomised `noise_variance` scales the same standard
+    normals). A perturbation where it means nothing (a mass in kinematic mode, motors of a
     holonomic robot, a heading noise without a heading, a lidar noise without a lidar) is a
-    `ValueError` saying why, never silently ignored. The bias is added to the step's two
-    noise draws in the frame of the action's noise-free command (a `Move` along its
-    direction and to its left; a `Twist` on its distance and on its rim's arc). During the
-    first `latency_steps` steps of an episode no command reaches the robot: it stays at rest
-    (no physics, no noise drawn) and the step is rewarded as any other. The observation
-    noises change what the agent sees (the observation, and `achieved_goal` with the same
-    noisy x, y); the true pose (`env.unwrapped.pose`), the reward, termination and `info`
-    are computed from the truth. `info["perturbation"]` (at reset and every step) and
-    `env.unwrapped.perturbation` give the episode's values, fixed and drawn; a
-    `noise_variance` range leaves its upper end in `env.unwrapped.task` (it sizes the
-    dynamic substeps), and each reset then drops the unused noise block.
+    `ValueError` saying why, never silently ignored. The bias is added to the step's two noise
+    draws in the frame of the action's noise-free command (a `Move` along its direction and to
+    its left; a `Twist` on its distance and on its rim's arc). During the first `latency_steps`
+    steps of an episode no command reaches the robot: it stays at rest (no physics, no noise
+    drawn) and the step is rewarded as any other. The observation noises change what the agent
+    sees (the observation, and `achieved_goal` with the same noisy x, y); the true pose
+    (`env.unwrapped.pose`), the reward, termination and `info` are computed from the truth.
+    `info["perturbation"]` (at reset and every step) and `env.unwrapped.perturbation` give the
+    episode's values, fixed and drawn; a `noise_variance` range leaves its upper end in
+    `env.unwrapped.task` (it sizes the dynamic substeps).
 
     ## Version History
 
@@ -246,6 +249,8 @@ class BulletMazeEnv(gym.Env[Any, Any]):
     """
 
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 30}  # noqa: RUF012
+    _rng_parent: np.random.Generator | None
+    """The ``np_random`` that the perturbations' generator was derived from."""
 
     def __init__(
         self,
@@ -370,7 +375,9 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._goal_reward = self.task.goal_reward
         self._collision_reward = self.task.collision_reward
         self._step_reward = self.task.step_reward
-        self._noise_std = self.task.noise_std
+        # A randomised noise variance keeps standard normals in the block and scales them by
+        # the episode's standard deviation at each step (the same stream in every episode).
+        self._noise_std = 1.0 if "noise_variance" in settings else self.task.noise_std
         self._noise: list[float] = []
         self._noise_index = 0
         self._x, self._y = self.layout.start
@@ -495,8 +502,11 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             self._noise, self._noise_index = [], 0
         start, heading, goal = self._parse_options(options)
         self.world.restore(self._initial_state)
+        if self._perturbed and self._rng_parent is not self.np_random:
+            self._rng_parent = self.np_random
+            self._rng = child_generator(self.np_random)
         if self._randomised:
-            self._set_perturbation(draw(self._settings, self.np_random))
+            self._set_perturbation(draw(self._settings, self._rng))
         if self._queue is not None:
             self._queue.clear()
         self.robot.place(start[0], start[1], heading)
@@ -694,6 +704,9 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._biased = "bias_along" in settings or "bias_left" in settings
         self._along = self._left = 0.0
         self._position_noise = self._heading_noise = self._lidar_noise = 0.0
+        self._noise_scale: float | None = None
+        self._rng_parent = None
+        self._rng = np.random.default_rng(0)  # replaced at the first reset
 
     def _set_perturbation(self, values: dict[str, float | int]) -> None:
         """Make ``values`` this episode's perturbation: the bodies' physics (at construction for
@@ -715,9 +728,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
                     torque=values.get("torque_scale", 1.0),
                 )
         if "noise_variance" in values:
-            # Each episode's noise at its own variance: the unused block is dropped.
-            self._noise_std = math.sqrt(values["noise_variance"])
-            self._noise, self._noise_index = [], 0
+            self._noise_scale = math.sqrt(values["noise_variance"])
         self._latency = int(values.get("latency_steps", 0))
         self._along = float(values.get("bias_along", 0.0))
         self._left = float(values.get("bias_left", 0.0))
@@ -739,6 +750,8 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         i = self._noise_index
         noise_a, noise_b = self._noise[i], self._noise[i + 1]
         self._noise_index = i + 2
+        if self._noise_scale is not None:
+            noise_a, noise_b = noise_a * self._noise_scale, noise_b * self._noise_scale
         if self._biased:
             noise_a, noise_b = self._bias(checked, noise_a, noise_b)
         command = self.actions.command(checked, noise_a, noise_b)
@@ -779,7 +792,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             self._add_observation_noise(pose)
         if self.lidar is not None:
             heading = self._heading if self._has_heading else 0.0
-            readings = self.lidar.read(self._x, self._y, heading, self._lidar_noise, self.np_random)
+            readings = self.lidar.read(self._x, self._y, heading, self._lidar_noise, self._rng)
             pose = np.concatenate((pose, readings))
         if not self._goal_conditioned:
             return pose
@@ -791,8 +804,9 @@ class BulletMazeEnv(gym.Env[Any, Any]):
 
     def _add_observation_noise(self, pose: np.ndarray) -> None:
         """``observation_noise`` on x and y (clipped to the arena) and ``heading_noise`` on the
-        heading (wrapped), drawn from ``np_random``: x and y first, then the heading."""
-        rng = self.np_random
+        heading (wrapped), from the perturbations' generator: x and y first, then the
+        heading."""
+        rng = self._rng
         if self._position_noise > 0.0:
             dx, dy = rng.standard_normal(2) * self._position_noise
             width, height = self._arena

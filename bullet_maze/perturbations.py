@@ -10,12 +10,17 @@ its own value at ``reset``:
 * ``[low, high]`` or ``(low, high)`` (a TOML array arrives as a list), or a NumPy array of two;
 * ``{"low": low, "high": high}`` (a TOML inline table ``{ low = 0.5, high = 2.0 }``).
 
-A range draws uniformly from ``np_random`` (``uniform(low, high)``; ``integers(low, high + 1)``
-for the integer ``latency_steps``), one draw per randomised parameter in the order of
-``PERTURBATIONS``, at every reset and only when a range is given (``low == high`` is a range
-too, and draws). Values are strictly checked: a number (a bool is not one, nor a string), finite,
-within the parameter's bounds, ``low <= high``, exactly two ends; every error names the parameter
-and the value.
+A range draws uniformly (``uniform(low, high)``; ``integers(low, high + 1)`` for the integer
+``latency_steps``), one draw per randomised parameter in the order of ``PERTURBATIONS``, at every
+reset and only when a range is given (``low == high`` is a range too, and draws). These draws,
+and the observation and lidar noise, come from a generator of their own derived from the env's
+``np_random`` without drawing from it (``child_generator``): the same seed gives the same draws,
+and the action noise is the same stream with or without perturbations, so that a perturbed and
+an unperturbed rollout of one seed can be compared step by step.
+
+Values are strictly checked: a number (a bool is not one, nor a string), finite, within the
+parameter's bounds, ``low <= high``, exactly two ends; every error names the parameter and the
+value.
 
 ``applies(name, ...)`` says whether a perturbation means something for a mode, drive and
 observation; the env refuses one that does not (a ``ValueError`` saying why) rather than ignore
@@ -339,6 +344,22 @@ def draw(settings: Mapping[str, Setting], rng: np.random.Generator) -> dict[str,
     return values
 
 
+def child_generator(rng: np.random.Generator) -> np.random.Generator:
+    """A generator of its own for the perturbations' draws, derived from ``rng`` without drawing
+    from it: seeded with the first child of ``rng``'s seed sequence (``SeedSequence.spawn``), so
+    the same seed gives the same child, and the env's ``np_random`` keeps the action noise's
+    stream as without perturbations. A generator without a seed sequence (made from a bare
+    state) gives a ``jumped`` copy of its bit generator, or failing that a seed drawn from it."""
+    bits = rng.bit_generator
+    seed_seq = getattr(bits, "seed_seq", None)
+    if isinstance(seed_seq, np.random.SeedSequence):
+        return np.random.Generator(type(bits)(seed_seq.spawn(1)[0]))
+    jumped = getattr(bits, "jumped", None)
+    if jumped is not None:
+        return np.random.Generator(jumped())
+    return np.random.default_rng(int(rng.integers(2**63)))
+
+
 def largest(setting: Setting | None, default: float = 0.0) -> float:
     """The largest magnitude a setting can take (a range's farther end)."""
     if setting is None:
@@ -388,6 +409,7 @@ __all__ = [
     "Range",
     "Setting",
     "applies",
+    "child_generator",
     "draw",
     "largest",
     "level_settings",
