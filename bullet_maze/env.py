@@ -229,17 +229,18 @@ class BulletMazeEnv(gym.Env[Any, Any]):
     (`perturbations.child_generator`), so the same seed gives the same draws and the same action
     noise as without perturbations (a randomised `noise_variance` scales the same standard
     normals). A perturbation where it means nothing (a mass in kinematic mode, motors of a
-    holonomic robot, a heading noise without a heading, a lidar noise without a lidar) is a
-    `ValueError` saying why, never silently ignored. The bias is added to the step's two noise
-    draws in the frame of the action's noise-free command (a `Move` along its direction and to
-    its left; a `Twist` on its distance and on its rim's arc). During the first `latency_steps`
-    steps of an episode no command reaches the robot: it stays at rest (no physics, no noise
-    drawn) and the step is rewarded as any other. The observation noises change what the agent
-    sees (the observation, and `achieved_goal` with the same noisy x, y); the true pose
-    (`env.unwrapped.pose`), the reward, termination and `info` are computed from the truth.
-    `info["perturbation"]` (at reset and every step) and `env.unwrapped.perturbation` give the
-    episode's values, fixed and drawn; a `noise_variance` range leaves its upper end in
-    `env.unwrapped.task` (it sizes the dynamic substeps).
+    holonomic robot, the mass of a holonomic robot whose touching steps are undone, a heading
+    noise without a heading, a lidar noise without a lidar) is a `ValueError` saying why, never
+    silently ignored. The bias is added to the step's two noise draws in the frame of the
+    action's noise-free command (a `Move` along its direction and to its left; a `Twist` on its
+    distance and on its rim's arc). During the first `latency_steps` steps of an episode no
+    command reaches the robot: it stays at rest (no physics, no noise drawn) and the step is
+    rewarded as any other. The observation noises change what the agent sees (the observation,
+    and `achieved_goal` with the same noisy x, y); the true pose (`env.unwrapped.pose`), the
+    reward, termination and `info` are computed from the truth. `info["perturbation"]` (at reset
+    and every step) and `env.unwrapped.perturbation` give the episode's values, fixed and drawn;
+    a `noise_variance` range leaves its upper end in `env.unwrapped.task` (it sizes the dynamic
+    substeps).
 
     ## Version History
 
@@ -694,9 +695,10 @@ class BulletMazeEnv(gym.Env[Any, Any]):
                 drive=self.robot.drive.kind,
                 has_heading=self.robot.has_heading,
                 lidar=self.lidar is not None,
+                revert_on_collision=self.physics.revert_on_collision,
             )
             if reason is not None:
-                raise ValueError(f"{name} = {settings[name]!r} does not apply here: {reason}")
+                raise ValueError(f"{name} = {settings[name]} does not apply here: {reason}")
         self._randomised = any(isinstance(value, Range) for value in settings.values())
         self._physical_drawn = any(isinstance(settings.get(name), Range) for name in PHYSICAL)
         self._queue: deque[Any] | None = deque() if "latency_steps" in settings else None

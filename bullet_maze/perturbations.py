@@ -129,7 +129,9 @@ PERTURBATIONS: tuple[Perturbation, ...] = (
         0.01,
         100.0,
         1.0,
-        "every link's mass and inertia times this (the same shape, a denser robot)",
+        "every link's mass and inertia times this (the same shape, a denser robot); a "
+        "holonomic robot's motion depends on it only through contacts that are not undone "
+        "(revert_on_collision=False)",
         dynamic_only=True,
     ),
     Perturbation(
@@ -231,6 +233,9 @@ class Range:
     low: float
     high: float
 
+    def __str__(self) -> str:
+        return f"[{self.low!r}, {self.high!r}]"
+
 
 Setting = float | int | Range
 """A perturbation's value: fixed, or a range."""
@@ -279,10 +284,17 @@ def parse_settings(values: Mapping[str, Any]) -> dict[str, Setting]:
 
 
 def applies(
-    name: str, *, mode: str, drive: str, has_heading: bool | None = None, lidar: bool = False
+    name: str,
+    *,
+    mode: str,
+    drive: str,
+    has_heading: bool | None = None,
+    lidar: bool = False,
+    revert_on_collision: bool = True,
 ) -> str | None:
     """``None`` if the perturbation ``name`` means something for a robot of this drive in this
-    mode with (or without) a heading and a lidar; else the reason why it does not."""
+    mode with (or without) a heading and a lidar (``has_heading`` defaults to every drive but
+    the holonomic one's); else the reason why it does not."""
     if name not in BY_NAME:
         raise ValueError(f"unknown perturbation {name!r}; the perturbations are {list(NAMES)}")
     if mode not in MODES:
@@ -295,6 +307,13 @@ def applies(
         return (
             f"{name} needs mode='dynamic': the kinematic step is the drive's exact model, "
             f"which has no masses, frictions or motors"
+        )
+    if name == "mass_scale" and drive == "holonomic" and revert_on_collision:
+        return (
+            f"{name} changes nothing for a holonomic robot whose touching steps are undone "
+            f"(revert_on_collision=True): its velocity is set at every step and floor friction "
+            f"slows any mass alike (measured: bit-identical rollouts); with "
+            f"revert_on_collision=False its contacts depend on it"
         )
     if spec.needs == "motors" and drive == "holonomic":
         return (
@@ -315,6 +334,7 @@ def level_settings(
     drive: str,
     has_heading: bool | None = None,
     lidar: bool = False,
+    revert_on_collision: bool = True,
 ) -> dict[str, float | tuple[float, float]]:
     """The env keywords of a perturbation level (``LEVELS``) for one condition: the level's
     settings that apply to it (``applies``), ready for ``gym.make(..., **settings)``."""
@@ -323,7 +343,15 @@ def level_settings(
     return {
         name: value
         for name, value in LEVELS[level].items()
-        if applies(name, mode=mode, drive=drive, has_heading=has_heading, lidar=lidar) is None
+        if applies(
+            name,
+            mode=mode,
+            drive=drive,
+            has_heading=has_heading,
+            lidar=lidar,
+            revert_on_collision=revert_on_collision,
+        )
+        is None
     }
 
 
@@ -376,7 +404,9 @@ def _describe(spec: Perturbation) -> str:
 
 def _number(spec: Perturbation, value: Any, where: str) -> float | int:
     what = _describe(spec)
-    if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real):
+    if isinstance(value, bool | np.bool_):
+        raise TypeError(f"{where}: {spec.name} must be {what}; a bool is not a number")
+    if not isinstance(value, numbers.Real):
         raise TypeError(f"{where}: {spec.name} must be {what}; got {type(value).__name__}")
     if spec.integer:
         if not isinstance(value, numbers.Integral):
