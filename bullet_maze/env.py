@@ -252,6 +252,8 @@ class BulletMazeEnv(gym.Env[Any, Any]):
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 30}  # noqa: RUF012
     _rng_parent: np.random.Generator | None
     """The ``np_random`` that the perturbations' generator was derived from."""
+    _sensor_noise: list[float]
+    """Standard normals for the observation noise, three per observation."""
 
     def __init__(
         self,
@@ -506,6 +508,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         if self._perturbed and self._rng_parent is not self.np_random:
             self._rng_parent = self.np_random
             self._rng = child_generator(self.np_random)
+            self._sensor_noise, self._sensor_index = [], 0
         if self._randomised:
             self._set_perturbation(draw(self._settings, self._rng))
         if self._queue is not None:
@@ -709,6 +712,9 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._noise_scale: float | None = None
         self._rng_parent = None
         self._rng = np.random.default_rng(0)  # replaced at the first reset
+        self._sensor_noise = []
+        self._sensor_index = 0
+        self._nominal: dict[int, Command] = {}
 
     def _set_perturbation(self, values: dict[str, float | int]) -> None:
         """Make ``values`` this episode's perturbation: the bodies' physics (at construction for
@@ -767,7 +773,11 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         ``bias_left`` to its left; a ``Twist`` gets ``bias_along`` on its distance (in the sense
         of its sign) and ``bias_left`` on the arc its rim travels (a turn to the left)."""
         along, left = self._along, self._left
-        nominal = self.actions.command(action, 0.0, 0.0)
+        nominal = self._nominal.get(action) if isinstance(action, int) else None
+        if nominal is None:
+            nominal = self.actions.command(action, 0.0, 0.0)
+            if isinstance(action, int):  # a discrete action's nominal command never changes
+                self._nominal[action] = nominal
         if isinstance(nominal, Move):
             length = math.hypot(nominal.dx, nominal.dy)
             if length == 0.0:
@@ -806,16 +816,22 @@ class BulletMazeEnv(gym.Env[Any, Any]):
 
     def _add_observation_noise(self, pose: np.ndarray) -> None:
         """``observation_noise`` on x and y (clipped to the arena) and ``heading_noise`` on the
-        heading (wrapped), from the perturbations' generator: x and y first, then the
-        heading."""
-        rng = self._rng
+        heading (wrapped): three standard normals per observation (x, y, heading, whichever
+        are set), from the perturbations' generator in blocks of ``NOISE_BLOCK``
+        observations."""
+        i = self._sensor_index
+        if i >= len(self._sensor_noise):
+            self._sensor_noise = self._rng.standard_normal(3 * NOISE_BLOCK).tolist()
+            i = 0
+        self._sensor_index = i + 3
+        z = self._sensor_noise
         if self._position_noise > 0.0:
-            dx, dy = rng.standard_normal(2) * self._position_noise
             width, height = self._arena
-            pose[0] = min(width, max(0.0, pose[0] + dx))
-            pose[1] = min(height, max(0.0, pose[1] + dy))
+            std = self._position_noise
+            pose[0] = min(width, max(0.0, pose[0] + z[i] * std))
+            pose[1] = min(height, max(0.0, pose[1] + z[i + 1] * std))
         if self._heading_noise > 0.0:
-            pose[2] = wrap_angle(pose[2] + rng.standard_normal() * self._heading_noise)
+            pose[2] = wrap_angle(pose[2] + z[i + 2] * self._heading_noise)
 
     def _sync_body(self) -> None:
         if not self._body_in_sync:

@@ -1,0 +1,120 @@
+"""Training speed in physics (issue 11, item 4): the learning loop (env + the proposed agent) in
+dynamic mode, per robot and action set, without and with domain randomisation, against the
+kinematic disc in the same run.
+
+Each case builds the environment of the ``quick`` experiment (``experiments/quick.toml``: the
+default maze, the proposed agent adaptive + tabu with Table I's values) with its ``[env]`` table
+changed as an experiment file would change it (``mode``, ``robot``, ``[env.params]``: the
+action set and the perturbation level's settings from ``bullet_maze.perturbations``), then
+trains a fresh agent for a few capped episodes with ``experiments.training.train`` and reports
+env steps per CPU second of training (``time.process_time``: environment and agent together).
+
+Every round runs every case once, forwards in even rounds and backwards in odd ones; a rate is
+the median over the rounds, a ratio the median of the ratios measured within each round, so
+that load which slows a whole round cancels out. The reference is the kinematic disc.
+
+Run: ``python bench/bench_physics_training.py`` (``--rounds``, ``--quick`` for a smoke test).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import statistics
+from collections.abc import Callable
+from typing import Any
+
+from bullet_maze.perturbations import level_settings
+from experiments import factory
+from experiments.config import load_config
+from experiments.seeding import derive_seeds, run_seed
+from experiments.training import train
+
+CASES: tuple[tuple[str, str, str, str, int, int], ...] = (
+    # robot, mode, actions, perturbation level, episodes, cap
+    ("disc", "kinematic", "compass", "none", 10, 2000),
+    ("disc", "kinematic", "compass", "moderate", 10, 2000),
+    ("disc", "dynamic", "compass", "none", 10, 1000),
+    ("disc", "dynamic", "compass", "moderate", 10, 1000),
+    ("disc", "dynamic", "compass", "strong", 10, 1000),
+    ("husky", "dynamic", "compass", "none", 2, 100),
+    ("husky", "dynamic", "compass", "moderate", 2, 100),
+    ("husky", "dynamic", "native", "none", 4, 500),
+    ("husky", "dynamic", "native", "moderate", 4, 500),
+    ("rover", "dynamic", "compass", "none", 2, 150),
+    ("rover", "dynamic", "compass", "moderate", 2, 150),
+    ("rover", "dynamic", "native", "none", 4, 500),
+    ("rover", "dynamic", "native", "moderate", 4, 500),
+    ("racecar", "dynamic", "native", "none", 4, 500),
+    ("racecar", "dynamic", "native", "moderate", 4, 500),
+)
+"""Every robot of the zoo with the action sets the agent's discrete actions can drive."""
+
+DRIVES = {"disc": "holonomic", "husky": "differential", "rover": "differential"}
+"""Drive kinds of the zoo (the racecar is the car)."""
+
+
+def trainer(
+    robot: str, mode: str, actions: str, level: str, episodes: int, cap: int
+) -> Callable[[int], float]:
+    """A function of the round that trains a fresh agent and returns env steps per CPU second."""
+    config = load_config("quick")
+    settings = level_settings(level, mode=mode, drive=DRIVES.get(robot, "ackermann"))
+    params: dict[str, Any] = {"actions": actions, **settings}
+    env_spec = dataclasses.replace(
+        config.env, robot=robot, mode=mode, max_episode_steps=cap, params=params
+    )
+    config = dataclasses.replace(config, env=env_spec)
+    strategy = config.strategies[0]
+
+    def run(round_index: int) -> float:
+        seeds = derive_seeds(run_seed(config.seed, round_index))
+        env = factory.make_env(config.env)
+        try:
+            agent = factory.make_agent(config, strategy, env, seeds.agent)
+            training = train(env, agent, episodes, env_seed=seeds.env)
+        finally:
+            env.close()
+        return training.env_steps / training.cpu_time_s
+
+    return run
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--quick", action="store_true", help="one round, a tenth of the work")
+    args = parser.parse_args()
+    rounds = 1 if args.quick else args.rounds
+    runners = {}
+    for robot, mode, actions, level, episodes, cap in CASES:
+        if args.quick:
+            episodes, cap = max(1, episodes // 5), max(20, cap // 2)
+        runners[(robot, mode, actions, level)] = trainer(robot, mode, actions, level, episodes, cap)
+    names = list(runners)
+    rates: dict[tuple[str, str, str, str], list[float]] = {name: [] for name in names}
+    for i in range(rounds):
+        for name in names if i % 2 == 0 else names[::-1]:
+            rates[name].append(runners[name](i))
+    reference = names[0]
+    print(
+        "| robot | mode | actions | perturbation level | training steps/s | / kinematic disc | "
+        "/ same robot, no perturbation |"
+    )
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    for name in names:
+        robot, mode, actions, level = name
+        plain = (robot, mode, actions, "none")
+        to_reference = statistics.median(
+            r / q for r, q in zip(rates[name], rates[reference], strict=True)
+        )
+        to_plain = statistics.median(r / q for r, q in zip(rates[name], rates[plain], strict=True))
+        print(
+            f"| {robot} | {mode} | {actions} | {level} | {statistics.median(rates[name]):,.0f} | "
+            f"{to_reference:.4f} | {to_plain:.2f} |",
+            flush=True,
+        )
+
+
+if __name__ == "__main__":
+    main()
