@@ -399,7 +399,7 @@ def largest(setting: Setting | None, default: float = 0.0) -> float:
 
 def _describe(spec: Perturbation) -> str:
     kind = "an integer" if spec.integer else "a number"
-    return f"{kind} of {spec.unit} in [{spec.low:g}, {spec.high:g}], or a range [low, high] of them"
+    return f"{kind} ({spec.unit}) in [{spec.low:g}, {spec.high:g}], or a range [low, high]"
 
 
 def _number(spec: Perturbation, value: Any, where: str) -> float | int:
