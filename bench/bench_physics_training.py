@@ -13,6 +13,9 @@ Every round runs every case once, forwards in even rounds and backwards in odd o
 the median over the rounds, a ratio the median of the ratios measured within each round, so
 that load which slows a whole round cancels out. The reference is the kinematic disc.
 
+Then the disc's env alone (a fixed cycle of compass actions, no agent) with and without the
+moderate level, in both modes: what the perturbed step path costs the env itself.
+
 Run: ``python bench/bench_physics_training.py`` (``--rounds``, ``--quick`` for a smoke test).
 """
 
@@ -21,8 +24,11 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import statistics
+import time
 from collections.abc import Callable
 from typing import Any
+
+import gymnasium as gym
 
 from bullet_maze.perturbations import level_settings
 from experiments import factory
@@ -85,9 +91,59 @@ def trainer(
     return run
 
 
+ENV_CASES = (
+    ("kinematic", "none"),
+    ("kinematic", "moderate"),
+    ("dynamic", "none"),
+    ("dynamic", "moderate"),
+)
+"""The disc's env alone (a fixed action cycle, no agent): what the perturbed step path costs."""
+
+
+def env_runner(mode: str, level: str, steps: int) -> Callable[[int], float]:
+    """Env steps per CPU second of the disc, compass actions, a fixed cycle of actions."""
+    settings: dict[str, Any] = dict(level_settings(level, mode=mode, drive="holonomic"))
+    env = gym.make("BulletMaze-v0", mode=mode, **settings)
+    cycle = [0, 3, 0, 2, 1, 2, 0, 3]
+
+    def run(round_index: int) -> float:
+        env.reset(seed=round_index)
+        start = time.process_time()
+        for i in range(steps):
+            _, _, terminated, truncated, _ = env.step(cycle[i % 8])
+            if terminated or truncated:
+                env.reset()
+        return steps / (time.process_time() - start)
+
+    return run
+
+
+def env_speed(rounds: int, steps: int) -> None:
+    runners = {case: env_runner(*case, steps) for case in ENV_CASES}
+    rates = interleaved(runners, rounds)
+    print("\n| disc, compass, env alone | env steps/s | / same mode, no perturbation |")
+    print("| --- | --- | --- |")
+    for mode, level in ENV_CASES:
+        ratio = statistics.median(
+            r / q for r, q in zip(rates[(mode, level)], rates[(mode, "none")], strict=True)
+        )
+        print(f"| {mode}, {level} | {statistics.median(rates[(mode, level)]):,.0f} | {ratio:.2f} |")
+
+
+def interleaved(runners: dict[Any, Callable[[int], float]], rounds: int) -> dict[Any, list[float]]:
+    """Every runner once per round (given the round's index), forwards in even rounds and
+    backwards in odd ones."""
+    names = list(runners)
+    rates: dict[Any, list[float]] = {name: [] for name in names}
+    for i in range(rounds):
+        for name in names if i % 2 == 0 else names[::-1]:
+            rates[name].append(runners[name](i))
+    return rates
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--rounds", type=int, default=7)
     parser.add_argument("--quick", action="store_true", help="one round, a tenth of the work")
     args = parser.parse_args()
     rounds = 1 if args.quick else args.rounds
@@ -97,10 +153,7 @@ def main() -> None:
             episodes, cap = max(1, episodes // 5), max(20, cap // 2)
         runners[(robot, mode, actions, level)] = trainer(robot, mode, actions, level, episodes, cap)
     names = list(runners)
-    rates: dict[tuple[str, str, str, str], list[float]] = {name: [] for name in names}
-    for i in range(rounds):
-        for name in names if i % 2 == 0 else names[::-1]:
-            rates[name].append(runners[name](i))
+    rates = interleaved(runners, rounds)
     reference = names[0]
     print(
         "| robot | actions | mode | perturbation level | training steps/s | / kinematic disc | "
@@ -120,6 +173,7 @@ def main() -> None:
             f"{ratio(name, reference):.4f} | {kinematic:.4f} | {plain:.2f} |",
             flush=True,
         )
+    env_speed(rounds, 2000 if args.quick else 50000)
 
 
 if __name__ == "__main__":
