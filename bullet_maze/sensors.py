@@ -82,9 +82,10 @@ class Lidar:
         """The ranges (maze units, float64) seen from (x, y) facing ``heading``.
 
         With ``noise`` > 0 (a standard deviation in maze units, the env's ``lidar_noise``), each
-        ray that hit something reads its distance plus a Gaussian draw from ``rng``, clipped to
-        ``[0, range]``; a ray without a hit still reads the range (no return). One draw per ray,
-        hit or not, so the number of draws does not depend on the maze.
+        reading below the range (a ray that hit something) gets a Gaussian draw from ``rng``
+        added, clipped to ``[0, range]``; a ray without a hit still reads the range (no
+        return). One draw per ray, hit or not, so the number of draws does not depend on the
+        maze.
         """
         s = METRES_PER_UNIT
         c, d = math.cos(heading), math.sin(heading)
