@@ -160,6 +160,22 @@ def test_bias_of_velocity_commands_lengthens_the_distance_and_turns_left(
             assert math.dist(b[0][t][:2], b[0][t + 1][:2]) == pytest.approx(chord, abs=1e-9)
 
 
+@pytest.mark.parametrize("robot", ["disc", "rover"])
+def test_bias_and_latency_apply_to_continuous_actions(
+    make_env: Callable[..., gym.Env], robot: str
+) -> None:
+    """Continuous actions without noise: the disc's move (0.6, 0) * step_size and the rover's
+    half-speed drive both travel bias_along farther, one step late."""
+    kwargs = {"maze": "open", "robot": robot, "actions": "continuous", "noise_variance": 0.0}
+    actions = [np.array([0.6, 0.0], dtype=np.float32)] * 4
+    a = rollout(make_env(**kwargs), actions)
+    b = rollout(make_env(**kwargs, bias_along=0.3, latency_steps=1), actions)
+    np.testing.assert_array_equal(b[0][1], b[0][0])  # the first step holds
+    for t in range(3):
+        plain = math.dist(a[0][t][:2], a[0][t + 1][:2])
+        assert math.dist(b[0][t + 1][:2], b[0][t + 2][:2]) == pytest.approx(plain + 0.3, abs=1e-9)
+
+
 # -- Physics: friction, mass, motors ----------------------------------------------------------
 
 
