@@ -10,7 +10,8 @@ import math
 import numbers
 import os
 import sys
-from collections.abc import Sequence
+from collections import deque
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, NamedTuple, SupportsFloat
 
@@ -24,6 +25,18 @@ from bullet_maze.geometry import clearance
 from bullet_maze.goals import goal_reward, goal_space
 from bullet_maze.layout import DEFAULT_LAYOUT, MazeLayout, load_layout
 from bullet_maze.params import MODES, PhysicsParams, TaskParams
+from bullet_maze.perturbations import NAMES as PERTURBATION_NAMES
+from bullet_maze.perturbations import (
+    PHYSICAL,
+    Range,
+    Setting,
+    applies,
+    child_generator,
+    draw,
+    largest,
+    parse_setting,
+    parse_settings,
+)
 from bullet_maze.planning import PhysicalLimit, goal_reachable, shortest_path
 from bullet_maze.rendering import TopDownCamera
 from bullet_maze.robots import (
@@ -212,16 +225,68 @@ class BulletMazeEnv(gym.Env[Any, Any]):
     `distance_to_goal` and `is_success`. `env.unwrapped.optimal_steps` is the least number of
     compass steps that can reach the goal (see `bullet_maze.shortest_path`).
 
+    ## Perturbations
+
+    Keywords, each `None` (not set) by default; with none set the env is exactly the one
+    above, bit for bit, with the same draws from `np_random` (`bullet_maze.perturbations`,
+    `docs/perturbations.md`).
+
+    | keyword | unit | bounds | what it changes (where) |
+    |---------|------|--------|-------------------------|
+    | `noise_variance` | units^2 | [0, 100] | the noise above, per episode (a range) |
+    | `bias_along` | units/step | [-10, 10] | over-travel along the commanded motion |
+    | `bias_left` | units/step | [-10, 10] | veer to its left (a Twist: turn by it / radius) |
+    | `floor_friction_scale` | factor | [0, 10] | the floor's friction (dynamic) |
+    | `wheel_friction_scale` | factor | [0, 10] | the wheels' friction (dynamic) |
+    | `mass_scale` | factor | [0.01, 100] | every link's mass and inertia (dynamic) |
+    | `torque_scale` | factor | [0, 100] | the motors' force limits (dynamic, wheeled) |
+    | `latency_steps` | env steps | [0, 100] | actions execute k steps late (integer) |
+    | `observation_noise` | units (std) | [0, 100] | observed x, y, clipped to the arena |
+    | `heading_noise` | rad (std) | [0, pi] | observed heading, wrapped (a heading) |
+    | `lidar_noise` | units (std) | [0, 1000] | readings of rays that hit, clipped (a lidar) |
+
+    A fixed value is a number; a **range** is `[low, high]`, `(low, high)` or `{"low": low,
+    "high": high}` (TOML arrays and inline tables arrive so), and each reset draws the episode's
+    value uniformly (integers inclusive for `latency_steps`), one draw per randomised keyword in
+    the order of the table, only for ranges. These draws and the observation and lidar noise
+    come from a generator derived from `np_random`'s seed sequence without drawing from it
+    (`perturbations.child_generator`), so the same seed gives the same draws and the same action
+    noise as without perturbations (a randomised `noise_variance` scales the same standard
+    normals). A perturbation where it means nothing (a mass in kinematic mode, motors of a
+    holonomic robot, the mass of a holonomic robot whose touching steps are undone, a heading
+    noise without a heading, a lidar noise without a lidar) is a `ValueError` saying why, never
+    silently ignored. The bias is added to the step's two noise draws in the frame of the
+    action's noise-free command (a `Move` along its direction and to its left; a `Twist` on its
+    distance and on its rim's arc). During the first `latency_steps` steps of an episode no
+    command reaches the robot: it stays at rest (no physics, no noise drawn) and the step is
+    rewarded as any other. The observation noises change what the agent sees (the observation,
+    and `achieved_goal` with the same noisy x, y); the true pose (`env.unwrapped.pose`), the
+    reward, termination and `info` are computed from the truth. `info["perturbation"]` (at reset
+    and every step) and `env.unwrapped.perturbation` give the episode's values, fixed and drawn;
+    a `noise_variance` range leaves its upper end in `env.unwrapped.task` (it sizes the dynamic
+    substeps).
+
     ## Version History
 
     * v0: initial version; robot files, drives, action sets and observations added without
-      changing the disc's compass rollouts.
+      changing the disc's compass rollouts; perturbations and domain randomisation added
+      without changing any rollout that sets none.
     """
 
     parameter_classes = PARAMS
     """The dataclasses whose fields are the keyword parameters that ``**params`` takes."""
+    parameter_names = PERTURBATION_NAMES
+    """The other keyword parameters ``**params`` takes: the perturbations, each a value or a
+    range, checked by :meth:`check_parameter`."""
+    check_parameter = staticmethod(parse_setting)
+    """``check_parameter(name, value)``: a perturbation's value checked (``TypeError`` or
+    ``ValueError`` naming it), so that a config can be checked without building the env."""
 
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 30}  # noqa: RUF012
+    _rng_parent: np.random.Generator | None
+    """The ``np_random`` that the perturbations' generator was derived from."""
+    _sensor_noise: list[float]
+    """Standard normals for the observation noise, three per observation."""
 
     def __init__(
         self,
@@ -254,7 +319,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             if not 0 < robot_radius < math.inf:
                 raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
         spec = resolve_robot(robot)
-        task, physics, action_params, lidar_params = _split_params(params, spec)
+        task, physics, action_params, lidar_params, settings = _split_params(params, spec)
         self.task, self.physics = task, physics
         self.layout = load_layout(maze)
         self.mode = mode
@@ -278,6 +343,8 @@ class BulletMazeEnv(gym.Env[Any, Any]):
                 if observation.endswith("lidar")
                 else None
             )
+            self._settings = settings
+            self._check_perturbations(settings)
             self.physics = self._enough_substeps(self.physics)
             pb.setGravity(0.0, 0.0, -9.81, physicsClientId=self._client)
             pb.setPhysicsEngineParameter(
@@ -286,6 +353,13 @@ class BulletMazeEnv(gym.Env[Any, Any]):
                 physicsClientId=self._client,
             )
             self.robot.configure(self.physics)
+            self._ground_friction = pb.getDynamicsInfo(
+                self.world.ground_id, -1, physicsClientId=self._client
+            )[1]
+            self._perturbation: dict[str, float | int] = {}
+            self._set_perturbation(
+                {name: value for name, value in settings.items() if not isinstance(value, Range)}
+            )
             self.robot.place(*self.layout.start, self.layout.start_heading)
             self._initial_state = pb.saveState(physicsClientId=self._client)
         except BaseException:
@@ -322,11 +396,19 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._moves: dict[int | np.integer, tuple[float, float]] = (
             dict(enumerate(self.actions.moves)) if isinstance(self.actions, CompassActions) else {}
         )
-        self._plain = self._compass and self.lidar is None and not self._goal_conditioned
+        self._perturbed = bool(settings)
+        self._plain = (
+            self._compass
+            and self.lidar is None
+            and not self._goal_conditioned
+            and not self._perturbed
+        )
         self._goal_reward = self.task.goal_reward
         self._collision_reward = self.task.collision_reward
         self._step_reward = self.task.step_reward
-        self._noise_std = self.task.noise_std
+        # A randomised noise variance keeps standard normals in the block and scales them by
+        # the episode's standard deviation at each step (the same stream in every episode).
+        self._noise_std = 1.0 if "noise_variance" in settings else self.task.noise_std
         self._noise: list[float] = []
         self._noise_index = 0
         self._x, self._y = self.layout.start
@@ -361,6 +443,10 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         if self.robot.drive.kind != "holonomic":  # wheeled robots creep at wheel speed
             return physics
         longest = self.task.step_size + 4.0 * math.sqrt(2.0) * self.task.noise_std
+        if "bias_along" in self._settings or "bias_left" in self._settings:
+            longest += math.hypot(
+                largest(self._settings.get("bias_along")), largest(self._settings.get("bias_left"))
+            )
         needed = math.ceil(longest / self.robot.radius)
         if physics.substeps >= needed:
             return physics
@@ -382,7 +468,9 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         if i >= len(noise):
             self._draw_noise()
             i, noise = 0, self._noise
-        if self._compass:
+        if self._perturbed:
+            collided = self._perturbed_move(action)
+        elif self._compass:
             # The hot path takes a Python or numpy int in range straight from the table.
             move = self._moves.get(action) if type(action) in _FAST_ACTION_TYPES else None
             if move is None:
@@ -422,7 +510,13 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         if self._human:
             self._sync_body()
             self.world.park_probe()
-        info = {"collision": collided, "distance_to_goal": distance, "is_success": success}
+        info: dict[str, Any] = {
+            "collision": collided,
+            "distance_to_goal": distance,
+            "is_success": success,
+        }
+        if self._perturbed:
+            info["perturbation"] = dict(self._perturbation)
         if not self._plain:
             return self._observation(), reward, success, False, info
         if self._has_heading:
@@ -439,6 +533,14 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             self._noise, self._noise_index = [], 0
         start, heading, goal = self._parse_options(options)
         self.world.restore(self._initial_state)
+        if self._perturbed and self._rng_parent is not self.np_random:
+            self._rng_parent = self.np_random
+            self._rng = child_generator(self.np_random)
+            self._sensor_noise, self._sensor_index = [], 0
+        if self._randomised:
+            self._set_perturbation(draw(self._settings, self._rng))
+        if self._queue is not None:
+            self._queue.clear()
         self.robot.place(start[0], start[1], heading)
         self._x, self._y = start
         self._heading = wrap_angle(heading) if self.robot.has_heading else heading
@@ -447,7 +549,13 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             self.world.move_markers(start, goal)
         self._start, self._goal = start, goal
         distance = math.hypot(start[0] - goal[0], start[1] - goal[1])
-        info = {"collision": False, "distance_to_goal": distance, "is_success": False}
+        info: dict[str, Any] = {
+            "collision": False,
+            "distance_to_goal": distance,
+            "is_success": False,
+        }
+        if self._perturbed:
+            info["perturbation"] = dict(self._perturbation)
         return self._observation(), info
 
     def render(self) -> np.ndarray | None:
@@ -645,6 +753,114 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._y = y if 0.0 <= y <= height else 0.0 if y < 0.0 else height
         return touched
 
+    # -- Perturbations (bullet_maze.perturbations) ---------------------------------------
+
+    @property
+    def perturbation(self) -> dict[str, float | int]:
+        """This episode's perturbation values (fixed and drawn; empty if none is set), as
+        ``info["perturbation"]`` reports them."""
+        return dict(self._perturbation)
+
+    def _check_perturbations(self, settings: Mapping[str, Setting]) -> None:
+        """Refuse a perturbation that means nothing for this mode, robot and observation (see
+        ``bullet_maze.perturbations.applies``), and keep what ``step`` needs to know."""
+        for name in settings:
+            reason = applies(
+                name,
+                mode=self.mode,
+                drive=self.robot.drive.kind,
+                has_heading=self.robot.has_heading,
+                lidar=self.lidar is not None,
+                revert_on_collision=self.physics.revert_on_collision,
+            )
+            if reason is not None:
+                raise ValueError(f"{name} = {settings[name]} does not apply here: {reason}")
+        self._randomised = any(isinstance(value, Range) for value in settings.values())
+        self._physical_drawn = any(isinstance(settings.get(name), Range) for name in PHYSICAL)
+        self._queue: deque[Any] | None = deque() if "latency_steps" in settings else None
+        self._latency = 0
+        self._biased = "bias_along" in settings or "bias_left" in settings
+        self._along = self._left = 0.0
+        self._position_noise = self._heading_noise = self._lidar_noise = 0.0
+        self._noise_scale: float | None = None
+        self._rng_parent = None
+        self._rng = np.random.default_rng(0)  # replaced at the first reset
+        self._sensor_noise = []
+        self._sensor_index = 0
+        self._nominal: dict[int, Command] = {}
+
+    def _set_perturbation(self, values: dict[str, float | int]) -> None:
+        """Make ``values`` this episode's perturbation: the bodies' physics (at construction for
+        fixed values, at every reset for drawn ones) and what ``step`` and the observation use."""
+        first = not self._perturbation
+        self._perturbation = values
+        if any(name in values for name in PHYSICAL) and (first or self._physical_drawn):
+            if "floor_friction_scale" in values:
+                pb.changeDynamics(
+                    self.world.ground_id,
+                    -1,
+                    lateralFriction=self._ground_friction * values["floor_friction_scale"],
+                    physicsClientId=self._client,
+                )
+            if any(name in values for name in PHYSICAL[1:]):
+                self.robot.scale_dynamics(
+                    mass=values.get("mass_scale", 1.0),
+                    friction=values.get("wheel_friction_scale", 1.0),
+                    torque=values.get("torque_scale", 1.0),
+                )
+        if "noise_variance" in values:
+            self._noise_scale = math.sqrt(values["noise_variance"])
+        self._latency = int(values.get("latency_steps", 0))
+        self._along = float(values.get("bias_along", 0.0))
+        self._left = float(values.get("bias_left", 0.0))
+        self._position_noise = float(values.get("observation_noise", 0.0))
+        self._heading_noise = float(values.get("heading_noise", 0.0))
+        self._lidar_noise = float(values.get("lidar_noise", 0.0))
+
+    def _perturbed_move(self, action: Any) -> bool:
+        """One step of a perturbed env, any action set: the action checked now, executed
+        ``latency_steps`` later (until then the robot stays at rest and draws no noise), its
+        noise biased by ``bias_along`` / ``bias_left``; whether it collided."""
+        checked = self.actions.check(action)
+        queue = self._queue
+        if queue is not None:
+            queue.append(checked)
+            if len(queue) <= self._latency:
+                return False
+            checked = queue.popleft()
+        i = self._noise_index
+        noise_a, noise_b = self._noise[i], self._noise[i + 1]
+        self._noise_index = i + 2
+        if self._noise_scale is not None:
+            noise_a, noise_b = noise_a * self._noise_scale, noise_b * self._noise_scale
+        if self._biased:
+            noise_a, noise_b = self._bias(checked, noise_a, noise_b)
+        command = self.actions.command(checked, noise_a, noise_b)
+        if self._kinematic:
+            return self._kinematic_step(command)
+        return self._dynamic_step(command)
+
+    def _bias(self, action: Any, noise_a: float, noise_b: float) -> tuple[float, float]:
+        """The step's two noise draws plus the actuation bias, in the frame of the action's
+        nominal (noise-free) command: a ``Move`` gets ``bias_along`` along its direction and
+        ``bias_left`` to its left; a ``Twist`` gets ``bias_along`` on its distance (in the sense
+        of its sign) and ``bias_left`` on the arc its rim travels (a turn to the left)."""
+        along, left = self._along, self._left
+        nominal = self._nominal.get(action) if isinstance(action, int) else None
+        if nominal is None:
+            nominal = self.actions.command(action, 0.0, 0.0)
+            if isinstance(action, int):  # a discrete action's nominal command never changes
+                self._nominal[action] = nominal
+        if isinstance(nominal, Move):
+            length = math.hypot(nominal.dx, nominal.dy)
+            if length == 0.0:
+                return noise_a, noise_b
+            ux, uy = nominal.dx / length, nominal.dy / length
+            return noise_a + along * ux - left * uy, noise_b + along * uy + left * ux
+        if nominal.distance != 0.0:
+            noise_a += math.copysign(along, nominal.distance)
+        return noise_a, noise_b + left
+
     def _draw_noise(self) -> None:
         """Section V.A's noise for the next ``NOISE_BLOCK`` steps, from the seeded ``np_random``
         in one draw (two values per step, so the stream is the same as drawing per step)."""
@@ -657,16 +873,38 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             pose = np.array((self._x, self._y, self._heading))
         else:
             pose = np.array((self._x, self._y))
+        if self._position_noise > 0.0 or self._heading_noise > 0.0:
+            self._add_observation_noise(pose)
         if self.lidar is not None:
             heading = self._heading if self._has_heading else 0.0
-            pose = np.concatenate((pose, self.lidar.read(self._x, self._y, heading)))
+            readings = self.lidar.read(self._x, self._y, heading, self._lidar_noise, self._rng)
+            pose = np.concatenate((pose, readings))
         if not self._goal_conditioned:
             return pose
         return {
             "observation": pose,
-            "achieved_goal": np.array((self._x, self._y)),
+            "achieved_goal": pose[:2].copy(),
             "desired_goal": np.array(self._goal),
         }
+
+    def _add_observation_noise(self, pose: np.ndarray) -> None:
+        """``observation_noise`` on x and y (clipped to the arena) and ``heading_noise`` on the
+        heading (wrapped): three standard normals per observation (x, y, heading, whichever
+        are set), from the perturbations' generator in blocks of ``NOISE_BLOCK``
+        observations."""
+        i = self._sensor_index
+        if i >= len(self._sensor_noise):
+            self._sensor_noise = self._rng.standard_normal(3 * NOISE_BLOCK).tolist()
+            i = 0
+        self._sensor_index = i + 3
+        z = self._sensor_noise
+        if self._position_noise > 0.0:
+            width, height = self._arena
+            std = self._position_noise
+            pose[0] = min(width, max(0.0, pose[0] + z[i] * std))
+            pose[1] = min(height, max(0.0, pose[1] + z[i + 1] * std))
+        if self._heading_noise > 0.0:
+            pose[2] = wrap_angle(pose[2] + z[i + 2] * self._heading_noise)
 
     def _sync_body(self) -> None:
         if not self._body_in_sync:
@@ -750,22 +988,43 @@ class BulletMazeEnv(gym.Env[Any, Any]):
 
 def _split_params(
     params: dict[str, Any], spec: RobotSpec
-) -> tuple[TaskParams, PhysicsParams, ActionParams, LidarParams]:
-    """The env's keyword parameters as the dataclasses that hold their defaults: unknown names
-    and booleans given for numbers are refused; the robot file's lidar defaults fill in."""
+) -> tuple[TaskParams, PhysicsParams, ActionParams, LidarParams, dict[str, Setting]]:
+    """The env's keyword parameters as the dataclasses that hold their defaults, and the
+    perturbations given (``bullet_maze.perturbations``): unknown names and booleans given for
+    numbers are refused; the robot file's lidar defaults fill in. A ``noise_variance`` given
+    as a range is a perturbation; ``TaskParams`` then holds its upper end (which sizes the
+    dynamic substeps)."""
     if "max_episode_steps" in params:
         raise TypeError(
             f"max_episode_steps={params['max_episode_steps']!r} is not an env argument: the "
             f"time limit is set by gymnasium.make(..., max_episode_steps=N) with N > 0"
         )
     fields = {f.name: (cls, f) for cls in PARAMS for f in dataclasses.fields(cls)}
-    unknown = sorted(set(params) - set(fields))
+    unknown = sorted(set(params) - set(fields) - set(PERTURBATION_NAMES))
     if unknown:
         raise TypeError(
             f"BulletMazeEnv got unknown keyword argument(s) {unknown}; its parameters are "
-            f"{sorted(fields)} (and maze, robot, mode, render_mode, actions, observation, "
-            f"robot_radius, render_width, render_height)"
+            f"{sorted(fields)}, the perturbations {sorted(set(PERTURBATION_NAMES) - set(fields))} "
+            f"(and maze, robot, mode, render_mode, actions, observation, robot_radius, "
+            f"render_width, render_height)"
         )
+    params = dict(params)
+    given = {
+        name: params.pop(name)
+        for name in PERTURBATION_NAMES
+        if name in params and name not in fields
+    }
+    if isinstance(params.get("noise_variance"), Mapping | list | tuple | np.ndarray):
+        given["noise_variance"] = params.pop("noise_variance")
+    settings = parse_settings(given)
+    noise = settings.get("noise_variance")
+    if isinstance(noise, Range):
+        for end in (noise.low, noise.high):
+            try:
+                TaskParams(noise_variance=end)
+            except ValueError as error:
+                raise ValueError(f"noise_variance = {given['noise_variance']!r}: {error}") from None
+        params["noise_variance"] = noise.high
     for name, value in params.items():
         default = getattr(fields[name][0](), name)
         if isinstance(value, bool) != isinstance(default, bool):
@@ -784,7 +1043,7 @@ def _split_params(
     assert isinstance(physics, PhysicsParams)
     assert isinstance(action_params, ActionParams)
     assert isinstance(lidar_params, LidarParams)
-    return task, physics, action_params, lidar_params
+    return task, physics, action_params, lidar_params, settings
 
 
 def _display_available() -> bool:

@@ -71,8 +71,22 @@ class Lidar:
         self._cos, self._sin = np.cos(angles), np.sin(angles)
         self._height = np.full(self.rays, WALL_HEIGHT / 2.0 * METRES_PER_UNIT)
 
-    def read(self, x: float, y: float, heading: float) -> np.ndarray:
-        """The ranges (maze units, float64) seen from (x, y) facing ``heading``."""
+    def read(
+        self,
+        x: float,
+        y: float,
+        heading: float,
+        noise: float = 0.0,
+        rng: np.random.Generator | None = None,
+    ) -> np.ndarray:
+        """The ranges (maze units, float64) seen from (x, y) facing ``heading``.
+
+        With ``noise`` > 0 (a standard deviation in maze units, the env's ``lidar_noise``), each
+        reading below the range (a ray that hit something) gets a Gaussian draw from ``rng``
+        added, clipped to ``[0, range]``; a ray without a hit still reads the range (no
+        return). One draw per ray, hit or not, so the number of draws does not depend on the
+        maze.
+        """
         s = METRES_PER_UNIT
         c, d = math.cos(heading), math.sin(heading)
         ux = self._cos * c - self._sin * d
@@ -92,4 +106,10 @@ class Lidar:
                 readings[k] = (
                     self.range if hit[0] < 0 else self.radius + hit[2] * (self.range - self.radius)
                 )
+        if noise > 0.0:
+            if rng is None:
+                raise ValueError("lidar noise needs a generator (rng)")
+            draws = rng.standard_normal(self.rays) * noise
+            hit = readings < self.range
+            readings[hit] = np.clip(readings[hit] + draws[hit], 0.0, self.range)
         return readings

@@ -240,6 +240,14 @@ def _is_maze_id(env_id: str) -> bool:
     return spec is not None and spec.entry_point == bullet_maze.ENTRY_POINT
 
 
+class _Checked:
+    """A parameter checked by the env's own function (``check(name, value)``), in place of a
+    type annotation."""
+
+    def __init__(self, check: Any) -> None:
+        self.check = check
+
+
 def _constructor(env_id: str) -> tuple[inspect.Signature, dict[str, Any]] | None:
     """The signature and resolved annotations of an id's environment class (None if unknown)."""
     entry = registry[env_id].entry_point
@@ -257,6 +265,7 @@ def _constructor(env_id: str) -> tuple[inspect.Signature, dict[str, Any]] | None
         hints = {}
     # An env whose constructor takes ``**params`` may name the dataclasses that define them
     # (``BulletMazeEnv.parameter_classes``): their fields become its keyword parameters here.
+    # ``parameter_names`` lists the others it takes, left to the env to check.
     classes = getattr(creator, "parameter_classes", ())
     if classes:
         named = [p for p in signature.parameters.values() if p.kind != p.VAR_KEYWORD]
@@ -265,6 +274,13 @@ def _constructor(env_id: str) -> tuple[inspect.Signature, dict[str, Any]] | None
             for field in dataclasses.fields(cls):
                 named.append(inspect.Parameter(field.name, inspect.Parameter.KEYWORD_ONLY))
                 hints[field.name] = field_hints[field.name]
+        known = {p.name for p in named}
+        check = getattr(creator, "check_parameter", None)
+        for name in getattr(creator, "parameter_names", ()):
+            # A value or a range: the env's own ``check_parameter`` checks it, else the env.
+            hints[name] = _Checked(check) if check is not None else hints.get(name, Any)
+            if name not in known:
+                named.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY))
         signature = signature.replace(parameters=named)
     return signature, hints
 
@@ -741,7 +757,12 @@ class _Reader:
                     f"{env_id} takes no such argument (it takes "
                     f"{', '.join(sorted(accepted - reserved))})",
                 )
-            if key in hints:
+            if isinstance(hints.get(key), _Checked):
+                try:
+                    hints[key].check(key, value)
+                except (TypeError, ValueError) as error:
+                    raise self.fail("env.params", key, str(error)) from None
+            elif key in hints and hints[key] is not Any:
                 try:
                     check_value(value, hints[key], f"{self.source}: [env.params] {key}")
                 except ValueError as error:

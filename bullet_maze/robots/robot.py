@@ -64,6 +64,17 @@ class RobotState(NamedTuple):
     """Positions of the movable joints."""
 
 
+@dataclasses.dataclass(frozen=True)
+class _Nominal:
+    """What ``Robot.scale_dynamics`` scales, as loaded."""
+
+    masses: dict[int, tuple[float, tuple[float, ...]]]
+    """Link index (-1: the base) -> (mass in kg, local inertia diagonal in kg m^2)."""
+    frictions: dict[int, float]
+    """Wheel link index -> lateral friction coefficient."""
+    limits: DriveLimits
+
+
 class Robot:
     """A body the maze env drives; positions in maze units, heading in radians from +x (the
     robot's forward direction, which need not be its base's +x axis)."""
@@ -81,6 +92,7 @@ class Robot:
         """Footprint radius in maze units."""
         self.has_heading = drive.has_heading
         self._joints = body.indices
+        self._as_loaded: _Nominal | None = None
 
     @property
     def reach_margin(self) -> float:
@@ -153,6 +165,58 @@ class Robot:
     def configure(self, physics: PhysicsParams) -> None:
         """Keep the dynamic mode's settings for the drive."""
         self.drive.configure(physics)
+
+    def scale_dynamics(self, mass: float = 1.0, friction: float = 1.0, torque: float = 1.0) -> None:
+        """Scale the robot as it was loaded (the physical perturbations of
+        ``bullet_maze.perturbations``): every link's mass and inertia by ``mass``, the lateral
+        friction of its wheels (driven, steered and free; every link of a holonomic robot) by
+        ``friction``, and its motors' force limits (driven wheels, steering hinges) by
+        ``torque``. Every call starts from the values as loaded, so calls do not compound;
+        ``restoreState`` does not undo them."""
+        nominal = self._nominal()
+        client, body = self.client, self.body_id
+        for link, (link_mass, inertia) in nominal.masses.items():
+            pb.changeDynamics(
+                body,
+                link,
+                mass=link_mass * mass,
+                localInertiaDiagonal=[value * mass for value in inertia],
+                physicsClientId=client,
+            )
+        for link, coefficient in nominal.frictions.items():
+            pb.changeDynamics(
+                body, link, lateralFriction=coefficient * friction, physicsClientId=client
+            )
+        if self.drive.kind != "holonomic":
+            limits = nominal.limits
+            self.drive.set_limits(
+                wheel_torque=limits.wheel_torque * torque,
+                steering_torque=limits.steering_torque * torque,
+            )
+
+    def _nominal(self) -> _Nominal:
+        """The masses, inertias, wheel frictions and motor limits as loaded (read once)."""
+        if self._as_loaded is None:
+            client, body = self.client, self.body_id
+            links = range(-1, pb.getNumJoints(body, physicsClientId=client))
+            info = {link: pb.getDynamicsInfo(body, link, physicsClientId=client) for link in links}
+            drive = self.drive
+            if isinstance(drive, DifferentialDrive):
+                wheels = tuple(w.index for w in drive.left + drive.right)
+            elif isinstance(drive, AckermannDrive):
+                wheels = tuple(w.index for w in drive.driven + drive.free)
+            else:  # a holonomic body slides on whatever touches the floor
+                wheels = tuple(links)
+            self._as_loaded = _Nominal(
+                masses={
+                    link: (values[0], tuple(values[2]))
+                    for link, values in info.items()
+                    if values[0] > 0.0
+                },
+                frictions={link: info[link][1] for link in wheels},
+                limits=drive.limits,
+            )
+        return self._as_loaded
 
     def kinematic_path(self, pose: Pose, command: Command) -> tuple[list[Point], Pose]:
         """Kinematic mode: the base's path and final pose under the drive's exact model."""
