@@ -64,7 +64,7 @@ def write_report(
     accepted = tuple(check for _, check in state.code_changed) if accept_code_change else ()
     results = {name: runs for name, runs in results_of(config, state).items() if runs}
     if not results:
-        left_out = f"; left out: {_listing(excluded)}" if excluded else ""
+        left_out = f"; left out: {listing(excluded)}" if excluded else ""
         raise ValueError(f"{out_dir}: no finished runs to report{left_out}")
     optimal = _optimal_steps(results)
     window, final_window = config.smoothing_window, config.final_window
@@ -111,16 +111,16 @@ def write_report(
     summary_csv = out_dir / SUMMARY_FILE
     store.atomic_write_text(summary_csv, _summary_csv(summaries, optimal))
     markdown = out_dir / REPORT_FILE
-    text = render_markdown(config, summaries, optimal, seed) + _provenance(excluded, accepted)
+    text = render_markdown(config, summaries, optimal, seed) + provenance(excluded, accepted)
     store.atomic_write_text(markdown, text)
     return Report(markdown, summary_csv, figures, summaries, optimal, excluded, accepted)
 
 
-def _listing(checks: tuple[store.RunCheck, ...]) -> str:
+def listing(checks: tuple[store.RunCheck, ...]) -> str:
     return "; ".join(f"{c.name} ({c.reason})" for c in checks)
 
 
-def _provenance(excluded: tuple[store.RunCheck, ...], accepted: tuple[store.RunCheck, ...]) -> str:
+def provenance(excluded: tuple[store.RunCheck, ...], accepted: tuple[store.RunCheck, ...]) -> str:
     """The report's section on runs left out and runs accepted under another code version."""
     lines: list[str] = []
     if accepted:
