@@ -194,6 +194,10 @@ def _leaves(table: Any, path: tuple[Any, ...] = ()) -> list[tuple[Any, ...]]:
 
 @pytest.mark.parametrize("base", [SUITE, TASKS], ids=["suite", "tasks"])
 def test_random_edits_are_refused_by_name_or_round_trip(tmp_path: Path, base: dict[str, Any]):
+    if "suite" in base["env"]:  # a small suite of hand-written layouts: fast to load
+        suite = tmp_path / "small_suite.toml"
+        suite.write_text('dev = ["open", "paper"]\ntest = ["corridors"]\n')
+        base = _with(base, ("env", "suite"), str(suite))
     rng = np.random.default_rng(2026)
     refusals: list[str] = []
     accepted = 0
