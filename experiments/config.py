@@ -968,7 +968,8 @@ class _Reader:
         self, data: Mapping[str, Any], env: Mapping[str, Any], allowed_env_ids: Collection[str]
     ) -> tuple[str | None, tuple[str, ...], tuple[TaskSpec, ...]]:
         """The suite, its splits and the tasks of ``[env] suite`` or of ``[[task]]`` tables
-        (None, (), () for an experiment in one environment)."""
+        (None, (), () for an experiment in one environment). A task's table replaces each
+        ``[env]`` field it gives (``params`` as a whole) and inherits the others."""
         if "split" in env and "suite" not in env:
             raise self.fail("env", "split", "only applies with [env] suite")
         if "suite" in env:
@@ -990,15 +991,12 @@ class _Reader:
             raise ConfigError(f"{self.source}: [[task]]: {len(raw):,} tasks, at most {MAX_TASKS:,}")
         env_keys = {f.name for f in dataclasses.fields(EnvSpec)}
         self.only(env, "env", env_keys)
-        shared = dict(self.table(env, "env.params"))
         tasks = []
         for index, table in enumerate(raw):
             where = f"task.{index}"
             self.only(table, where, env_keys | {"name", *_REFERENCE_KEYS})
             merged = {key: value for key, value in env.items() if key in env_keys}
             merged.update({key: value for key, value in table.items() if key in env_keys})
-            if "params" in table and shared:
-                merged["params"] = {**shared, **self.table(table, f"{where}.params")}
             inherited = {key for key in env if key not in table}
             spec = self.env(merged, allowed_env_ids, where, inherited)
             if "name" in table:
