@@ -84,6 +84,7 @@ def build_parser() -> argparse.ArgumentParser:
         command=None,
         config=DEFAULT_CONFIG,
         strategy=None,
+        task=None,
         seed=None,
         episodes=None,
         time_budget=None,
@@ -111,6 +112,13 @@ def build_parser() -> argparse.ArgumentParser:
         "--strategy",
         metavar="NAME",
         help="strategy of the config file to train (default: its first)",
+    )
+    train.add_argument(
+        "--task",
+        metavar="NAME",
+        help="task of an experiment over tasks to train in (default: its first); an "
+        "experiment's run <task>/<strategy>__<seed> is reproduced by --task, --strategy and "
+        "--seed",
     )
     train.add_argument(
         "--exploration",
@@ -173,6 +181,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     experiment.add_argument(
         "--seed", type=_non_negative, metavar="N", help="experiment seed (default: the file's)"
+    )
+    experiment.add_argument(
+        "--split",
+        type=_names,
+        metavar="SPLIT[,SPLIT]",
+        help="splits of the layout suite to run: dev, test or dev,test (default: the file's "
+        "[env] split; only for an experiment over a suite)",
     )
     experiment.add_argument(
         "--workers",
@@ -385,6 +400,7 @@ def cmd_train(args: argparse.Namespace) -> int:
     job = TrainJob.from_options(
         config=args.config,
         strategy=args.strategy,
+        task=args.task,
         exploration=args.exploration,
         params=args.param or (),
         agent_params=args.agent_param or (),
@@ -478,6 +494,7 @@ def cmd_experiment(args: argparse.Namespace) -> int:
         accept_code_change=args.accept_code_change,
         allowed_env_ids=_allowed(args),
         results_dir=RESULTS_DIR,
+        splits=args.split,
     )
     config, out = experiment.config, experiment.out
     if not args.report_only:
@@ -489,10 +506,20 @@ def cmd_experiment(args: argparse.Namespace) -> int:
         def on_start(state: FolderState) -> None:
             chosen = len(experiment.only) if experiment.only is not None else len(config.strategies)
             total, done = len(state.planned), len(state.finished)
+            if config.tasks:
+                suite = (
+                    f" (suite {config.suite}, {'+'.join(config.splits)})" if config.suite else ""
+                )
+                what = f"{len(config.tasks)} tasks{suite} x "
+                where = "caps " + ", ".join(
+                    sorted({str(t.env.max_episode_steps) for t in config.tasks})
+                )
+            else:
+                what = ""
+                where = f"cap {config.env.max_episode_steps}, optimal {optimal[None]:g} steps"
             print(
-                f"{config.name}: {chosen} strategies x {config.runs} runs x "
-                f"{config.episodes} episodes (cap {config.env.max_episode_steps}, optimal "
-                f"{optimal:g} steps); {done} of {total} runs already done; "
+                f"{config.name}: {chosen} strategies x {what}{config.runs} runs x "
+                f"{config.episodes} episodes ({where}); {done} of {total} runs already done; "
                 f"backend {args.backend}, {backend.workers} workers; results in {out}/"
             )
             _print_checks("recomputed, their files do not verify", state.invalid)
@@ -539,6 +566,9 @@ def _print_checks(what: str, items: Sequence[tuple[Any, Any]]) -> None:
 
 
 def _print_experiment_summary(report: Any) -> None:
+    if hasattr(report, "aggregates"):
+        _print_task_summary(report)
+        return
     width = max([len("strategy"), *(len(s.strategy) for s in report.summaries)])
     print(
         f"\n{'strategy':<{width}} {'runs':>4} {'final steps':>11} {'/optimal':>8} "
@@ -555,6 +585,35 @@ def _print_experiment_summary(report: Any) -> None:
     print(
         f"\nreport: {report.markdown} (figures: "
         f"{', '.join(p.name for p in report.figures)}; table: {report.summary_csv.name})"
+    )
+    if report.excluded:
+        print(f"{len(report.excluded)} run(s) left out of the report (listed in it):")
+        for check in report.excluded[:20]:
+            print(f"  {check.name}: {check.status}: {check.reason}")
+
+
+def _print_task_summary(report: Any) -> None:
+    print(f"\n{len(report.tasks)} tasks with finished runs; aggregate over tasks and runs:")
+    width = max([len("strategy"), *(len(row.strategy) for row in report.aggregates)])
+    group = None
+    for row in report.aggregates:
+        if row.group != group:
+            group = row.group
+            print(
+                f"\n{group}\n{'strategy':<{width}} {'score':<22} {'runs':>5} "
+                f"{'IQM [95% CI]':>24} {'P(impr.)':>8}"
+            )
+        estimate = row.iqm
+        interval = f"{estimate.value:.3f} [{estimate.low:.3f}, {estimate.high:.3f}]"
+        improvement = "-" if row.p_improvement is None else f"{row.p_improvement.value:.2f}"
+        print(
+            f"{row.strategy:<{width}} {row.score.label:<22} {row.runs:>5} {interval:>24} "
+            f"{improvement:>8}"
+        )
+    print(
+        f"\nreport: {report.markdown} (figures: "
+        f"{', '.join(p.name for p in report.figures)}; tables: {report.summary_csv.name}, "
+        f"{report.aggregate_csv.name})"
     )
     if report.excluded:
         print(f"{len(report.excluded)} run(s) left out of the report (listed in it):")

@@ -4,8 +4,8 @@ The front door is three jobs (:mod:`experiments.jobs`), which ``run.py`` only fi
 command line and prints from:
 
 - :class:`TrainJob`: one agent, one strategy, one seed, saved and pictured;
-- :class:`Experiment`: strategies x runs into a results folder: ``pending()``, ``run()``,
-  ``report()``;
+- :class:`Experiment`: strategies x runs (x tasks: the layouts of a suite split, or
+  ``[[task]]`` tables) into a results folder: ``pending()``, ``run()``, ``report()``;
 - :class:`Playback`: a saved agent evaluated or rendered in an environment.
 
 Behind it, one small module per concern:
@@ -28,7 +28,12 @@ Behind it, one small module per concern:
 - :mod:`experiments.partition`: the learned partition drawn over the maze;
 - :mod:`experiments.evaluation`: greedy episodes of a trained agent;
 - :mod:`experiments.animation`: a GIF of one greedy episode;
-- :mod:`experiments.report`: the Markdown report of an experiment;
+- :mod:`experiments.report`: the Markdown report of an experiment in one environment;
+- :mod:`experiments.references`: reference returns of Gymnasium tasks (random policy, solved);
+- :mod:`experiments.task_scores`: per-task summaries and normalised scores;
+- :mod:`experiments.aggregate`: IQM, performance profiles and probability of improvement over
+  tasks, with stratified bootstrap intervals;
+- :mod:`experiments.task_report`: the report of an experiment over tasks;
 - :mod:`experiments.layout_sheet`: contact sheets of layouts with their shortest paths.
 
 The experiment files themselves (``paper_fig4.toml``, ``quick.toml``) live beside these modules.

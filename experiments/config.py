@@ -74,6 +74,16 @@ MAX_STRING = 4096
 """Longest other string (a path, a name, an id)."""
 MAX_TIME_BUDGET_S = 1e7
 """Longest wall-clock budget of a ``train`` run, in seconds."""
+MAX_TASKS = 1000
+"""Most tasks in one experiment (a suite split holds at most as many layouts)."""
+MAX_PLANNED_RUNS = MAX_RUNS * MAX_STRATEGIES
+"""Most runs (runs x tasks x strategies) in one experiment: what one environment allowed."""
+MAX_EVAL_EPISODES = 100_000
+"""Most greedy evaluation episodes per run."""
+MAX_OBSERVATION_DIMS = 64
+"""Most dimensions of ``observation_bounds``."""
+SPLITS = ("dev", "test")
+"""The splits of a layout suite (``bullet_maze.suites``)."""
 
 DEFAULT_ENV_ID = "BulletMaze-v0"
 _MAZE_DEFAULTS = {
@@ -83,6 +93,10 @@ _MAZE_DEFAULTS = {
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 _OWN_KEYS = ("maze", "robot", "mode")
 """Keyword arguments of the maze env that ``[env]`` sets by name, not in ``[env.params]``."""
+_SUITE_KEYS = ("suite", "split")
+"""Keys of ``[env]`` that choose a layout suite's tasks (they are not ``EnvSpec`` fields)."""
+_REFERENCE_KEYS = ("random_return", "solved_return")
+"""Keys of a ``[[task]]`` table that set its normalised score's ends."""
 
 
 class ConfigError(ValueError):
@@ -109,6 +123,10 @@ class EnvSpec:
     """Episode cap (section V: 5,000 steps); by default the id's registered limit."""
     params: dict[str, Any] = field(default_factory=dict)
     """Extra keyword arguments for the environment's constructor."""
+    observation_bounds: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    """The box ``(low, high)`` the agent's partition covers, for an observation space with
+    infinite bounds (CartPole's velocities); None: the space's own bounds. Observations outside
+    the box fall into its edge cells."""
 
     @property
     def is_maze(self) -> bool:
@@ -145,8 +163,35 @@ class StrategySpec:
 
 
 @dataclass(frozen=True)
+class TaskSpec:
+    """One task of an experiment over several: a layout of a suite, or a ``[[task]]`` table."""
+
+    name: str
+    """File-name safe label, unique in the experiment; its runs are in ``runs/<name>/``."""
+    env: EnvSpec
+    """The task's environment."""
+    split: str | None = None
+    """The suite split it comes from (``"dev"`` or ``"test"``; None for a ``[[task]]``)."""
+    random_return: float | None = None
+    """Return that normalises to 0 (a return task; default: :mod:`experiments.references`)."""
+    solved_return: float | None = None
+    """Return that normalises to 1 (a return task; default: Gymnasium's ``reward_threshold``)."""
+
+    @property
+    def spec_text(self) -> str:
+        """How the task reads in a report: the layout spec of a maze, else the id."""
+        return self.env.maze if self.env.maze is not None else self.env.id
+
+
+@dataclass(frozen=True)
 class ExperimentConfig:
-    """A whole experiment: strategies x runs x episodes in one environment."""
+    """A whole experiment: strategies x tasks x runs x episodes.
+
+    An experiment without tasks (no ``[env] suite``, no ``[[task]]``) runs in its one
+    environment, :attr:`env`, and its run files keep their names (``runs/<strategy>__<seed>``);
+    an experiment over tasks stores each task's runs in ``runs/<task>/``, and :attr:`env` is
+    its first task's environment.
+    """
 
     name: str
     """Label of the experiment; the default results folder is ``results/<name>/``."""
@@ -172,6 +217,15 @@ class ExperimentConfig:
     """Converged once the moving average stays within this fraction of the final value."""
     time_budget_s: float | None = None
     """Wall-clock cap of one run, for the quick default job only (results then depend on speed)."""
+    eval_episodes: int = 0
+    """Greedy episodes after each run's training (0: none), the first reset seeded from the
+    run's seed; stored beside the run as ``<run>.eval.csv``."""
+    tasks: tuple[TaskSpec, ...] = ()
+    """The tasks (empty: the one environment :attr:`env`)."""
+    suite: str | None = None
+    """The layout suite the tasks come from (``[env] suite``), if any."""
+    splits: tuple[str, ...] = ()
+    """The suite's splits run, in order (``[env] split``)."""
     description: str = ""
     """Free text copied into the report."""
     source: str = ""
@@ -194,6 +248,25 @@ class ExperimentConfig:
     def agent_params(self, spec: StrategySpec) -> dict[str, Any]:
         """Agent config fields of one strategy: the shared table overlaid with its own."""
         return {**self.agent, **spec.config}
+
+    def task(self, name: str, option: str | None = None) -> TaskSpec:
+        """The task called ``name`` (``option`` names where the name came from)."""
+        for task in self.tasks:
+            if task.name == name:
+                return task
+        where = f"option {option}" if option else self.source
+        known = ", ".join(t.name for t in self.tasks) or "none: it has one environment"
+        raise ConfigError(f"{where}: no task named {name!r} in {self.source} (tasks: {known})")
+
+    def single_task(self, name: str | None = None, option: str | None = None) -> ExperimentConfig:
+        """This experiment in one environment: the task ``name`` (default the first), or itself
+        when it has no tasks."""
+        if not self.tasks:
+            if name is not None:
+                self.task(name, option)
+            return self
+        task = self.task(name, option) if name is not None else self.tasks[0]
+        return dataclasses.replace(self, env=task.env, tasks=(), suite=None, splits=())
 
 
 # --- environment ids ----------------------------------------------------------------------
@@ -371,15 +444,17 @@ def parse_config(
     """Validate the parsed TOML ``data`` of an experiment; ``source`` names it in errors."""
     reader = _Reader(source)
     reader.document(data)
-    reader.only(data, "", {"experiment", "env", "agent", "strategy"})
+    reader.only(data, "", {"experiment", "env", "agent", "strategy", "task"})
     meta = reader.table(data, "experiment", required=True)
     reader.only(
         meta,
         "experiment",
         {f.name for f in dataclasses.fields(ExperimentConfig)}
-        - {"strategies", "env", "agent", "source"},
+        - {"strategies", "env", "agent", "source", "tasks", "suite", "splits"},
     )
-    env = reader.env(reader.table(data, "env"), allowed_env_ids)
+    env_table = reader.table(data, "env")
+    suite, splits, tasks = reader.tasks(data, env_table, allowed_env_ids)
+    env = tasks[0].env if tasks else reader.env(env_table, allowed_env_ids)
     agent = dict(reader.table(data, "agent"))
     if agent:
         _agent_check(lambda: config_from_data(agent, f"{source}: [agent]"))
@@ -415,11 +490,13 @@ def parse_config(
     description = reader.value(meta, "experiment", "description", str, "")
     if len(description) > MAX_TEXT:
         raise reader.fail("experiment", "description", f"longer than {MAX_TEXT} characters")
+    runs = reader.bounded(meta, "experiment", "runs", 30, 1, MAX_RUNS)
+    check_planned_runs(runs, max(1, len(tasks)), len(strategies), f"{source}: [experiment] runs")
     return ExperimentConfig(
         name=reader.name(meta, "experiment", "name"),
         strategies=strategies,
         seed=reader.bounded(meta, "experiment", "seed", 0, 0, MAX_SEED),
-        runs=reader.bounded(meta, "experiment", "runs", 30, 1, MAX_RUNS),
+        runs=runs,
         episodes=reader.bounded(meta, "experiment", "episodes", 4000, 1, MAX_EPISODES),
         env=env,
         agent=agent,
@@ -430,9 +507,46 @@ def parse_config(
         final_window=reader.bounded(meta, "experiment", "final_window", 100, 1, MAX_EPISODES),
         convergence_tolerance=float(tolerance),
         time_budget_s=None if budget is None else float(budget),
+        eval_episodes=reader.bounded(meta, "experiment", "eval_episodes", 0, 0, MAX_EVAL_EPISODES),
+        tasks=tasks,
+        suite=suite,
+        splits=splits,
         description=description,
         source=source,
     )
+
+
+def check_splits(items: Sequence[str], where: str) -> tuple[str, ...]:
+    """Suite splits: each ``"dev"`` or ``"test"``, at least one, none twice (``where`` names
+    the file and key, or the option)."""
+    for item in items:
+        if item not in SPLITS:
+            raise ConfigError(f"{where}: unknown split {item[:100]!r} (the splits are dev, test)")
+    if not items or len(set(items)) != len(items):
+        raise ConfigError(f"{where}: expected dev, test or both once each, got {list(items)}")
+    return tuple(items)
+
+
+def check_planned_runs(runs: int, tasks: int, strategies: int, where: str) -> None:
+    """Refuse more than :data:`MAX_PLANNED_RUNS` runs in all (``where`` names the cause)."""
+    total = runs * tasks * strategies
+    if total > MAX_PLANNED_RUNS:
+        raise ConfigError(
+            f"{where}: {runs:,} runs x {tasks:,} tasks x {strategies:,} strategies is "
+            f"{total:,} runs, at most {MAX_PLANNED_RUNS:,}"
+        )
+
+
+def task_name(spec: EnvSpec) -> str:
+    """The default name of a task: its layout spec or id made file-name safe
+    (``rooms:seed=1,door=14`` -> ``rooms-seed1-door14``; a layout file by its stem)."""
+    if spec.maze is None:
+        text = spec.id
+    elif spec.maze.endswith(".toml"):
+        text = Path(spec.maze).stem
+    else:
+        text = spec.maze.replace(":", "-").replace(",", "-").replace("=", "")
+    return re.sub(r"[^A-Za-z0-9_.+-]", "_", text)
 
 
 _KEY = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -505,8 +619,33 @@ def with_overrides(config: ExperimentConfig, **overrides: int | None) -> Experim
     if "max_episode_steps" in changes:
         env_changes["max_episode_steps"] = changes.pop("max_episode_steps")
     env = dataclasses.replace(config.env, **env_changes) if env_changes else config.env
-    fields: dict[str, Any] = {"env": env, **changes}
+    tasks = tuple(
+        dataclasses.replace(task, env=dataclasses.replace(task.env, **env_changes))
+        for task in config.tasks
+    )
+    if "runs" in changes:
+        check_planned_runs(
+            changes["runs"], max(1, len(tasks)), len(config.strategies), "option --runs"
+        )
+    fields: dict[str, Any] = {"env": env, "tasks": tasks, **changes}
     return dataclasses.replace(config, **fields)
+
+
+def with_splits(
+    config: ExperimentConfig, splits: Sequence[str] | None, option: str = "--split"
+) -> ExperimentConfig:
+    """A suite experiment over other splits of its suite (None keeps the file's)."""
+    if splits is None:
+        return config
+    if config.suite is None:
+        raise ConfigError(
+            f"option {option}: only applies to an experiment over a layout suite ([env] suite); "
+            f"{config.source} has none"
+        )
+    chosen = check_splits([check_option_text(s, option) for s in splits], f"option {option}")
+    data = to_dict(config)
+    data["env"]["split"] = list(chosen)
+    return parse_config(data, config.source)
 
 
 def to_dict(config: ExperimentConfig) -> dict[str, Any]:
@@ -525,9 +664,38 @@ def to_dict(config: ExperimentConfig) -> dict[str, Any]:
         meta["baseline"] = config.baseline
     if config.time_budget_s is not None:
         meta["time_budget_s"] = config.time_budget_s
-    env = {k: v for k, v in dataclasses.asdict(config.env).items() if v is not None}
+    if config.eval_episodes:
+        meta["eval_episodes"] = config.eval_episodes
     strategies = [strategy_to_dict(spec) for spec in config.strategies]
-    return {"experiment": meta, "env": env, "agent": dict(config.agent), "strategy": strategies}
+    data: dict[str, Any] = {"experiment": meta}
+    if config.suite is not None:
+        env = env_to_dict(config.env)
+        env.pop("maze", None)
+        env["suite"] = config.suite
+        env["split"] = config.splits[0] if len(config.splits) == 1 else list(config.splits)
+        data["env"] = env
+    elif config.tasks:
+        data["task"] = [task_to_dict(task) for task in config.tasks]
+    else:
+        data["env"] = env_to_dict(config.env)
+    return {**data, "agent": dict(config.agent), "strategy": strategies}
+
+
+def env_to_dict(spec: EnvSpec) -> dict[str, Any]:
+    """An ``[env]`` table (its unset fields left out)."""
+    env = {k: v for k, v in dataclasses.asdict(spec).items() if v is not None}
+    if spec.observation_bounds is not None:
+        env["observation_bounds"] = [list(side) for side in spec.observation_bounds]
+    return env
+
+
+def task_to_dict(task: TaskSpec) -> dict[str, Any]:
+    """One ``[[task]]`` table, its environment written in full."""
+    table: dict[str, Any] = {"name": task.name, **env_to_dict(task.env)}
+    if task.random_return is not None:
+        table["random_return"] = task.random_return
+        table["solved_return"] = task.solved_return
+    return table
 
 
 def strategy_to_dict(spec: StrategySpec) -> dict[str, Any]:
@@ -607,8 +775,8 @@ class _Reader:
     def at(self, path: tuple[Any, ...], message: str) -> ConfigError:
         """An error at a key path, written as the rest of this module writes keys
         (``[agent] alpha``, ``[strategy.1] config.max_leaves``)."""
-        if len(path) >= 2 and path[0] == "strategy" and isinstance(path[1], int):
-            table, rest = f"strategy.{path[1]}", path[2:]
+        if len(path) >= 2 and path[0] in ("strategy", "task") and isinstance(path[1], int):
+            table, rest = f"{path[0]}.{path[1]}", path[2:]
         else:
             table, rest = (str(path[0]) if path else ""), path[1:]
         key = ".".join(str(k) if not isinstance(k, int) else f"[{k}]" for k in rest)
@@ -694,15 +862,27 @@ class _Reader:
             )
         return value
 
-    def env(self, table: Mapping[str, Any], allowed_env_ids: Collection[str]) -> EnvSpec:
-        self.only(table, "env", {f.name for f in dataclasses.fields(EnvSpec)})
-        env_id = self.value(table, "env", "id", str, DEFAULT_ENV_ID)
-        check_env_id(env_id, f"{self.source}: [env] id", allowed_env_ids)
-        params = dict(self.table(table, "env.params"))
+    def env(
+        self,
+        table: Mapping[str, Any],
+        allowed_env_ids: Collection[str],
+        where: str = "env",
+        inherited: Collection[str] = (),
+    ) -> EnvSpec:
+        """An environment table: ``[env]``, or a task's (``where``) whose ``inherited`` keys
+        came from ``[env]`` (their errors name ``[env]``)."""
+
+        def at(key: str) -> str:
+            return "env" if key in inherited else where
+
+        self.only(table, where, {f.name for f in dataclasses.fields(EnvSpec)})
+        env_id = self.value(table, at("id"), "id", str, DEFAULT_ENV_ID)
+        check_env_id(env_id, f"{self.source}: [{at('id')}] id", allowed_env_ids)
+        params = dict(self.table(table, f"{at('params')}.params"))
         registered = registry[env_id]
         cap = self.bounded(
             table,
-            "env",
+            at("max_episode_steps"),
             "max_episode_steps",
             registered.max_episode_steps or MAX_EPISODE_STEPS,
             1,
@@ -710,27 +890,64 @@ class _Reader:
         )
         constructor = _constructor(env_id)
         if constructor is not None:
-            self.env_params(params, constructor, env_id)
+            self.env_params(params, constructor, env_id, f"{at('params')}.params")
+        bounds = self.observation_bounds(table, at("observation_bounds"))
         if not _is_maze_id(env_id):
             for key in _OWN_KEYS:
                 if key in table:
-                    raise self.fail("env", key, f"only applies to the maze ids, not {env_id!r}")
-            return EnvSpec(env_id, None, None, None, cap, params)
+                    whose = f" (the id of [{where}])" if key in inherited else ""
+                    raise self.fail(
+                        at(key), key, f"only applies to the maze ids, not {env_id!r}{whose}"
+                    )
+            return EnvSpec(env_id, None, None, None, cap, params, bounds)
         defaults = {**_signature_defaults(constructor), **registered.kwargs}
         return EnvSpec(
             id=env_id,
-            maze=self.value(table, "env", "maze", str, defaults.get("maze", EnvSpec.maze)),
-            robot=self.value(table, "env", "robot", str, defaults.get("robot", EnvSpec.robot)),
-            mode=self.choice(table, "env", "mode", MODES, defaults.get("mode", MODES[0])),
+            maze=self.value(table, at("maze"), "maze", str, defaults.get("maze", EnvSpec.maze)),
+            robot=self.value(
+                table, at("robot"), "robot", str, defaults.get("robot", EnvSpec.robot)
+            ),
+            mode=self.choice(table, at("mode"), "mode", MODES, defaults.get("mode", MODES[0])),
             max_episode_steps=cap,
             params=params,
+            observation_bounds=bounds,
         )
+
+    def observation_bounds(
+        self, table: Mapping[str, Any], where: str
+    ) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
+        """``observation_bounds = [[low, ...], [high, ...]]``: finite numbers, low < high."""
+        key = "observation_bounds"
+        if key not in table:
+            return None
+        value = table[key]
+        expected = (
+            f"expected [[low, ...], [high, ...]] with at most {MAX_OBSERVATION_DIMS} finite "
+            "numbers each, every low below its high"
+        )
+        if not (
+            isinstance(value, list)
+            and len(value) == 2
+            and all(isinstance(side, list) for side in value)
+            and 1 <= len(value[0]) == len(value[1]) <= MAX_OBSERVATION_DIMS
+            and all(
+                isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x)
+                for side in value
+                for x in side
+            )
+        ):
+            raise self.fail(where, key, f"{expected}, got {str(value)[:200]}")
+        low, high = (tuple(float(x) for x in side) for side in value)
+        if not all(a < b for a, b in zip(low, high, strict=True)):
+            raise self.fail(where, key, f"{expected}, got {str(value)[:200]}")
+        return low, high
 
     def env_params(
         self,
         params: Mapping[str, Any],
         constructor: tuple[inspect.Signature, dict[str, Any]],
         env_id: str,
+        where: str = "env.params",
     ) -> None:
         """``[env.params]`` against the environment constructor's parameters and annotations."""
         signature, hints = constructor
@@ -744,7 +961,7 @@ class _Reader:
         for key, value in params.items():
             if key in reserved:
                 raise self.fail(
-                    "env.params",
+                    where,
                     key,
                     f"is set by [env] {key}"
                     if key != "render_mode"
@@ -752,7 +969,7 @@ class _Reader:
                 )
             if key not in accepted and not open_ended:
                 raise self.fail(
-                    "env.params",
+                    where,
                     key,
                     f"{env_id} takes no such argument (it takes "
                     f"{', '.join(sorted(accepted - reserved))})",
@@ -764,9 +981,133 @@ class _Reader:
                     raise self.fail("env.params", key, str(error)) from None
             elif key in hints and hints[key] is not Any:
                 try:
-                    check_value(value, hints[key], f"{self.source}: [env.params] {key}")
+                    check_value(value, hints[key], f"{self.source}: [{where}] {key}")
                 except ValueError as error:
                     raise ConfigError(str(error)) from None
+
+    def tasks(
+        self, data: Mapping[str, Any], env: Mapping[str, Any], allowed_env_ids: Collection[str]
+    ) -> tuple[str | None, tuple[str, ...], tuple[TaskSpec, ...]]:
+        """The suite, its splits and the tasks of ``[env] suite`` or of ``[[task]]`` tables
+        (None, (), () for an experiment in one environment). A task's table replaces each
+        ``[env]`` field it gives (``params`` as a whole) and inherits the others."""
+        if "split" in env and "suite" not in env:
+            raise self.fail("env", "split", "only applies with [env] suite")
+        if "suite" in env:
+            if "task" in data:
+                raise self.fail(
+                    "env",
+                    "suite",
+                    "cannot be combined with [[task]] tables (give one or the other)",
+                )
+            return self.suite_tasks(env, allowed_env_ids)
+        if "task" not in data:
+            return None, (), ()
+        raw = data["task"]
+        if not isinstance(raw, list) or not all(isinstance(item, dict) for item in raw):
+            raise ConfigError(f"{self.source}: [[task]]: expected an array of tables [[task]]")
+        if not raw:
+            raise ConfigError(f"{self.source}: [[task]]: at least one task table is required")
+        if len(raw) > MAX_TASKS:
+            raise ConfigError(f"{self.source}: [[task]]: {len(raw):,} tasks, at most {MAX_TASKS:,}")
+        env_keys = {f.name for f in dataclasses.fields(EnvSpec)}
+        self.only(env, "env", env_keys)
+        tasks = []
+        for index, table in enumerate(raw):
+            where = f"task.{index}"
+            self.only(table, where, env_keys | {"name", *_REFERENCE_KEYS})
+            merged = {key: value for key, value in env.items() if key in env_keys}
+            merged.update({key: value for key, value in table.items() if key in env_keys})
+            inherited = {key for key in env if key not in table}
+            spec = self.env(merged, allowed_env_ids, where, inherited)
+            if "name" in table:
+                name = self.name(table, where, "name")
+            else:
+                name = task_name(spec)
+                if not _NAME.match(name) or len(name) > MAX_NAME:
+                    raise self.fail(where, "name", f"is required ({spec.label!r} makes no name)")
+            random_return, solved_return = self.references(table, where, spec)
+            tasks.append(TaskSpec(name, spec, None, random_return, solved_return))
+        self.distinct(tasks)
+        return None, (), tuple(tasks)
+
+    def references(
+        self, table: Mapping[str, Any], where: str, spec: EnvSpec
+    ) -> tuple[float | None, float | None]:
+        given = [key for key in _REFERENCE_KEYS if key in table]
+        if not given:
+            return None, None
+        if spec.is_maze:
+            raise self.fail(where, given[0], "a maze task is scored against its optimum")
+        if len(given) == 1:
+            missing = next(key for key in _REFERENCE_KEYS if key not in table)
+            raise self.fail(where, missing, f"is required with {given[0]}")
+        low = float(self.number(table, where, "random_return", None))
+        high = float(self.number(table, where, "solved_return", None))
+        if not low < high:
+            raise self.fail(
+                where, "solved_return", f"must be above random_return ({low:g}), got {high:g}"
+            )
+        return low, high
+
+    def distinct(self, tasks: Sequence[TaskSpec]) -> None:
+        """No two tasks with one name, nor two with one environment."""
+        for later, task in enumerate(tasks):
+            for earlier in range(later):
+                other = tasks[earlier]
+                if other.name == task.name:
+                    raise self.fail(
+                        f"task.{later}",
+                        "name",
+                        f"{task.name!r} is the name of task {earlier} too (give each a name)",
+                    )
+                if other.env == task.env:
+                    raise ConfigError(
+                        f"{self.source}: [task.{later}]: the same task as [task.{earlier}] "
+                        f"({task.spec_text!r})"
+                    )
+
+    def suite_tasks(
+        self, env: Mapping[str, Any], allowed_env_ids: Collection[str]
+    ) -> tuple[str, tuple[str, ...], tuple[TaskSpec, ...]]:
+        """One task per layout of ``[env] suite``'s ``split`` (``"dev"`` by default)."""
+        name = self.value(env, "env", "suite", str, None)
+        if "maze" in env:
+            raise self.fail(
+                "env", "maze", "cannot be combined with suite (each layout of the suite is a task)"
+            )
+        splits = self.splits(env.get("split", "dev"), "[env] split")
+        base = self.env({k: v for k, v in env.items() if k not in _SUITE_KEYS}, allowed_env_ids)
+        if not base.is_maze or "maze" in registry[base.id].kwargs:
+            raise self.fail(
+                "env",
+                "suite",
+                f"needs a maze id whose maze the experiment chooses ({DEFAULT_ENV_ID}), "
+                f"not {base.id!r}",
+            )
+        try:
+            suite = bullet_maze.load_suite(name)
+        except (TypeError, ValueError, OSError) as error:
+            raise self.fail("env", "suite", str(error)) from None
+        tasks = []
+        for split in splits:
+            for spec in suite.split(split):
+                layout_env = dataclasses.replace(base, maze=spec)
+                tasks.append(TaskSpec(task_name(layout_env), layout_env, split))
+        for task in tasks:
+            if not _NAME.match(task.name) or len(task.name) > MAX_NAME:
+                raise self.fail("env", "suite", f"layout {task.spec_text!r} makes no task name")
+        self.distinct(tasks)
+        return name, splits, tuple(tasks)
+
+    def splits(self, value: Any, where: str) -> tuple[str, ...]:
+        """``"dev"``, ``"test"`` or a list of them (each at most once)."""
+        items = value if isinstance(value, list) else [value]
+        if not items or not all(isinstance(item, str) for item in items):
+            raise ConfigError(
+                f'{self.source}: {where}: expected "dev", "test" or a list of them, got {value!r}'
+            )
+        return check_splits(items, f"{self.source}: {where}")
 
     def strategy(self, raw: Any, index: int, agent: Mapping[str, Any]) -> StrategySpec:
         where = f"strategy.{index}"

@@ -60,7 +60,10 @@ def greedy_episode(
         if terminated or truncated:
             success = bool(info.get("is_success", terminated))
             break
-    return Episode(steps, total, success, bool(truncated), collisions, np.array(positions))
+    # cut by the time limit only: an episode that ends on its last allowed step is not
+    # "truncated" (the learner's episode statistics count it the same way)
+    cut = bool(truncated) and not terminated
+    return Episode(steps, total, success, cut, collisions, np.array(positions))
 
 
 def evaluate(env: Any, agent: Any, episodes: int, seed: int = 0) -> Evaluation:

@@ -18,7 +18,7 @@ import numpy as np
 
 from agent.serialization import check_grid_resolution, config_from_data, exploration_from_data
 from experiments import fingerprint
-from experiments.config import ConfigError, EnvSpec, ExperimentConfig, StrategySpec
+from experiments.config import ConfigError, EnvSpec, ExperimentConfig, StrategySpec, TaskSpec
 
 
 def make_env(spec: EnvSpec, render_mode: str | None = None, **changes: Any) -> gym.Env:
@@ -52,8 +52,15 @@ def make_exploration(config: ExperimentConfig, strategy: StrategySpec) -> Any:
         raise ConfigError(str(error)) from None
 
 
-def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env, seed: int) -> Any:
-    """A fresh agent of the strategy for ``env``, its generator seeded with ``seed``."""
+def make_agent(
+    config: ExperimentConfig,
+    strategy: StrategySpec,
+    env: gym.Env,
+    seed: int,
+    bounds: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
+) -> Any:
+    """A fresh agent of the strategy for ``env``, its generator seeded with ``seed``;
+    ``bounds`` (an ``EnvSpec``'s ``observation_bounds``) is the box its partition covers."""
     from agent import GridAgent, TreeAgent
 
     tree_config = agent_config(config, strategy)
@@ -70,6 +77,7 @@ def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env, s
                 seed=seed,
                 config=tree_config,
                 resolution=resolution,
+                bounds=bounds,
             )
         return TreeAgent(
             env.observation_space,
@@ -77,6 +85,7 @@ def make_agent(config: ExperimentConfig, strategy: StrategySpec, env: gym.Env, s
             exploration=exploration,
             seed=seed,
             config=tree_config,
+            bounds=bounds,
         )
     except (TypeError, ValueError) as error:
         message = str(error)
@@ -93,6 +102,14 @@ def env_origins(source: str, options: Mapping[str, str] | None = None) -> dict[s
     if options:
         origins["env"] = f"{source}: [env] with {', '.join(sorted(options.values()))}"
     return origins
+
+
+def task_origins(source: str, task: TaskSpec) -> dict[str, str]:
+    """Where each setting of a task came from, for error messages: the task itself."""
+    where = f"{source}: task {task.name!r}"
+    if task.split is not None:
+        where += f" ([env] suite, split {task.split})"
+    return {key: where for key in ("id", "maze", "robot", "mode", "params", "env")}
 
 
 def check_env(spec: EnvSpec, origins: Mapping[str, str]) -> gym.Env:
@@ -119,11 +136,18 @@ def check_env(spec: EnvSpec, origins: Mapping[str, str]) -> gym.Env:
         ) from None
 
 
-def check_agents(config: ExperimentConfig, env: gym.Env) -> None:
-    """Build every strategy's agent once for ``env`` (a grid too fine, a space the agent
-    cannot take: a :class:`ConfigError` naming the strategy)."""
+def check_agents(
+    config: ExperimentConfig, env: gym.Env, spec: EnvSpec | None = None, where: str = ""
+) -> None:
+    """Build every strategy's agent once for ``env`` (made from ``spec``, default the
+    experiment's): a grid too fine, a space the agent cannot take is a :class:`ConfigError`
+    naming the strategy (and ``where``, the task)."""
+    bounds = (spec or config.env).observation_bounds
     for strategy in config.strategies:
-        make_agent(config, strategy, env, seed=0)
+        try:
+            make_agent(config, strategy, env, seed=0, bounds=bounds)
+        except ConfigError as error:
+            raise ConfigError(f"{error} ({where})" if where else str(error)) from None
 
 
 def optimal_steps(env: gym.Env) -> float:

@@ -45,6 +45,7 @@ RESULT_SOURCES = (
     "experiments/training.py",
     "experiments/factory.py",
     "experiments/seeding.py",
+    "experiments/evaluation.py",
 )
 """What computes a run's numbers (folders are taken whole), relative to the project root."""
 
@@ -132,16 +133,22 @@ def resolved_config(
 
     config = TreeConfig(**experiment.agent_params(strategy)).to_dict()
     params = exploration_spec(make_exploration(strategy.exploration, **strategy.exploration_params))
-    return {
+    env_settings = dataclasses.asdict(env)
+    if env_settings.get("observation_bounds") is None:  # settings added later appear only when
+        env_settings.pop("observation_bounds", None)  # set: earlier runs keep their fingerprint
+    settings = {
         "episodes": experiment.episodes,
         "seed": seed,
-        "env": dataclasses.asdict(env),
+        "env": env_settings,
         "agent": strategy.agent,
         "resolution": strategy.resolution,
         "exploration": strategy.exploration,
         "exploration_params": params["params"],
         "agent_config": config,
     }
+    if experiment.eval_episodes:
+        settings["eval_episodes"] = experiment.eval_episodes
+    return settings
 
 
 def _strip_docstrings(tree: ast.AST) -> ast.AST:

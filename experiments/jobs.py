@@ -36,6 +36,7 @@ if TYPE_CHECKING:  # the modules that draw are imported when a job draws (matplo
     from experiments.backends import Backend
     from experiments.report import Report
     from experiments.single_run import SingleRun
+    from experiments.task_report import TaskReport
 
 DEFAULT_CONFIG = "quick"
 """The experiment file of the default job and of ``train`` (``experiments/quick.toml``)."""
@@ -124,6 +125,7 @@ class TrainJob:
         cls,
         config: str | Path = DEFAULT_CONFIG,
         strategy: str | None = None,
+        task: str | None = None,
         exploration: str | None = None,
         params: Sequence[str] = (),
         agent_params: Sequence[str] = (),
@@ -137,8 +139,11 @@ class TrainJob:
     ) -> TrainJob:
         """The job the options describe. ``params`` and ``agent_params`` are ``KEY=VALUE``
         texts (values in TOML: ``0.05``, ``true``, ``"text"``; bare text is a string).
-        ``time_budget_s`` 0 removes the file's budget."""
-        file_config = _load(config, "--config", allowed_env_ids)
+        ``time_budget_s`` 0 removes the file's budget; ``task`` chooses a task of an
+        experiment over several (default: its first)."""
+        if task is not None:
+            config_module.check_option_text(task, "--task")
+        file_config = _load(config, "--config", allowed_env_ids).single_task(task, "--task")
         spec = (
             file_config.strategy(strategy, "--strategy")
             if strategy is not None
@@ -236,13 +241,15 @@ class Experiment:
         accept_code_change: bool = False,
         allowed_env_ids: Collection[str] = (),
         results_dir: Path = RESULTS_DIR,
+        splits: Sequence[str] | None = None,
     ) -> Experiment:
         """An experiment file with the command line's overrides; the default folder is
-        ``results/<name>`` with ``__<episodes>ep``, ``__cap<N>``, ``__seed<N>`` for the
-        overrides that change results (runs may be added to a folder)."""
+        ``results/<name>`` with ``__<episodes>ep``, ``__cap<N>``, ``__seed<N>``,
+        ``__<split>`` for the overrides that change results (runs may be added to a folder).
+        ``splits`` replaces a suite experiment's ``[env] split`` (``--split``)."""
         file_config = _load(config, "CONFIG", allowed_env_ids)
         resolved = config_module.with_overrides(
-            file_config,
+            config_module.with_splits(file_config, splits),
             runs=runs,
             episodes=episodes,
             seed=seed,
@@ -266,15 +273,23 @@ class Experiment:
         """The runs still to compute: missing, or whose files do not verify."""
         return self.status().pending
 
-    def check(self) -> float:
-        """Build the environment and every strategy's agent once (a bad setting fails here,
-        before any run, named); the environment's optimal number of steps."""
-        env = factory.check_env(self.config.env, factory.env_origins(self.config.source))
-        try:
-            factory.check_agents(self.config, env)
-            return factory.optimal_steps(env)
-        finally:
-            env.close()
+    def check(self) -> dict[str | None, float]:
+        """Build each task's environment and every strategy's agent once (a bad setting fails
+        here, before any run, named); each task's optimal number of steps (NaN where the
+        environment does not say), by task name (None: the one environment)."""
+        config = self.config
+        checks: list[tuple[str | None, EnvSpec, dict[str, str]]] = [
+            (t.name, t.env, factory.task_origins(config.source, t)) for t in config.tasks
+        ] or [(None, config.env, factory.env_origins(config.source))]
+        optimal: dict[str | None, float] = {}
+        for name, spec, origins in checks:
+            env = factory.check_env(spec, origins)
+            try:
+                factory.check_agents(config, env, spec, f"task {name!r}" if name else "")
+                optimal[name] = factory.optimal_steps(env)
+            finally:
+                env.close()
+        return optimal
 
     def run(
         self,
@@ -297,14 +312,17 @@ class Experiment:
             allowed_env_ids=self.allowed_env_ids,
         )
 
-    def report(self) -> Report:
-        """Write the report of every finished, verified run (``ConfigError`` if none)."""
+    def report(self) -> Report | TaskReport:
+        """Write the report of every finished, verified run (``ConfigError`` if none): a
+        :class:`~experiments.task_report.TaskReport` for an experiment over tasks."""
         from experiments.report import write_report
+        from experiments.task_report import write_task_report
 
         if not self.out.is_dir():
             raise ConfigError(f"{self.out}: no such results folder (nothing has run)")
+        write = write_task_report if self.config.tasks else write_report
         try:
-            return write_report(
+            return write(
                 self.config, self.out, task=self.task, accept_code_change=self.accept_code_change
             )
         except ValueError as error:
@@ -313,6 +331,8 @@ class Experiment:
 
 def _folder_name(file_config: ExperimentConfig, config: ExperimentConfig) -> str:
     name = config.name
+    if config.splits != file_config.splits:
+        name += f"__{'+'.join(config.splits)}"
     if config.episodes != file_config.episodes:
         name += f"__{config.episodes}ep"
     if config.env.max_episode_steps != file_config.env.max_episode_steps:
@@ -366,7 +386,7 @@ class Playback:
             loaded = config_module.load_config(
                 beside if beside.is_file() else DEFAULT_CONFIG, allowed_env_ids
             )
-        loaded, origins = (env or EnvOptions()).apply(loaded)
+        loaded, origins = (env or EnvOptions()).apply(loaded.single_task())
         try:
             saved = factory.load_agent(path)
         except (ValueError, OSError) as error:

@@ -1,8 +1,10 @@
-"""The runs of an experiment: one :class:`RunSpec` per (strategy, run index), in a fixed order.
+"""The runs of an experiment: one :class:`RunSpec` per (task, strategy, run index), in a fixed
+order.
 
-Each run carries its own environment (:attr:`RunSpec.env`): today every run of an experiment
-has the experiment's, and an experiment over a suite of layouts or tasks gives each run its
-own, without a change to the runner, the store or the workers.
+Each run carries its own environment (:attr:`RunSpec.env`): the experiment's when it has one
+environment, else its task's. Run i has the same seed for every strategy and every task
+(common random seeds), so a run is named by its task, strategy and seed:
+``<task>/<strategy>__<seed>`` (``<strategy>__<seed>`` without tasks).
 """
 
 from __future__ import annotations
@@ -24,19 +26,25 @@ class RunSpec:
     run_index: int
     seed: int
     env: EnvSpec
+    task: str | None = None
+    """The task's name (None in an experiment with one environment)."""
 
     @property
     def name(self) -> str:
-        """``<strategy>__<seed>``."""
-        return store.run_name(self.strategy.name, self.seed)
+        """``<strategy>__<seed>``, or ``<task>/<strategy>__<seed>``."""
+        return store.run_name(self.strategy.name, self.seed, self.task)
 
 
 def plan(config: ExperimentConfig, only: Collection[str] | None = None) -> list[RunSpec]:
-    """Every run of the experiment (of the strategies in ``only``, if given), run index first
-    so that partial results are balanced."""
+    """Every run of the experiment (of the strategies in ``only``, if given), run index first,
+    then task, so that partial results are balanced."""
+    tasks: list[tuple[str | None, EnvSpec]] = [(t.name, t.env) for t in config.tasks] or [
+        (None, config.env)
+    ]
     return [
-        RunSpec(config, strategy, index, run_seed(config.seed, index), config.env)
+        RunSpec(config, strategy, index, run_seed(config.seed, index), env, task)
         for index in range(config.runs)
+        for task, env in tasks
         for strategy in config.strategies
         if only is None or strategy.name in only
     ]

@@ -6,6 +6,7 @@ Figures are built with ``matplotlib.figure.Figure`` and written by the Agg canva
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -130,3 +131,71 @@ def _reference_lines(axes: Axes, optimal: float, cap: int | None) -> None:
         )
     if cap is not None:
         axes.axhline(cap, color="0.4", linestyle=":", linewidth=1.0, label=f"cap ({cap})")
+
+
+Panel = tuple[str, Mapping[str, np.ndarray], str, tuple[tuple[str, float], ...], bool]
+"""One task's panel: title, runs x episodes values by strategy, y label, labelled reference
+lines, whether the y axis is logarithmic."""
+
+
+def task_curves(panels: list[Panel], path: Path, window: int, seed: int = 0) -> Path:
+    """One panel per task: each strategy's mean smoothed curve over runs, with its band."""
+    columns = max(1, math.ceil(math.sqrt(len(panels))))
+    rows = math.ceil(len(panels) / columns)
+    figure = Figure(figsize=(3.6 * columns, 2.8 * rows + 0.6), layout="constrained")
+    grid = figure.subplots(rows, columns, squeeze=False)
+    names: list[str] = []
+    for axes, (title, runs_by_strategy, ylabel, references, log_y) in zip(
+        grid.flat, panels, strict=False
+    ):
+        for name, (mean, low, high) in smoothed_bands(runs_by_strategy, window, seed).items():
+            if name not in names:
+                names.append(name)
+            index = names.index(name)
+            episodes = np.arange(1, mean.size + 1)
+            color = f"C{index % 10}"
+            style = _STYLES[index // 10 % 3]
+            axes.plot(episodes, mean, color=color, linestyle=style, linewidth=1.0, label=name)
+            axes.fill_between(episodes, low, high, color=color, alpha=0.15, linewidth=0)
+        for label, value in references:
+            if np.isfinite(value):
+                axes.axhline(value, color="k", linestyle="--", linewidth=0.8)
+                axes.annotate(label, (1, value), fontsize="x-small", va="bottom")
+        if log_y:
+            axes.set_yscale("log")
+        axes.set_title(title, fontsize="small")
+        axes.set_ylabel(ylabel, fontsize="small")
+        axes.tick_params(labelsize="x-small")
+    for axes in list(grid.flat)[len(panels) :]:
+        axes.set_visible(False)
+    handles, labels = grid.flat[0].get_legend_handles_labels()
+    figure.legend(handles, labels, loc="outside lower center", ncol=min(6, len(labels)))
+    figure.suptitle(f"{window}-episode moving average, mean over runs with 95% bootstrap band")
+    return save(figure, path)
+
+
+def performance_profile(
+    thresholds: np.ndarray,
+    profiles: Mapping[str, Band],
+    path: Path,
+    xlabel: str,
+    lower_is_better: bool,
+    title: str,
+) -> Path:
+    """Fraction of runs (all tasks) whose score is at least as good as each threshold, one
+    curve per strategy with its 95% stratified bootstrap band (Agarwal et al. 2021)."""
+    figure = Figure(figsize=(7, 4.5), layout="constrained")
+    axes = figure.subplots()
+    for index, (name, (value, low, high)) in enumerate(profiles.items()):
+        color = f"C{index % 10}"
+        axes.plot(thresholds, value, color=color, linestyle=_STYLES[index // 10 % 3], label=name)
+        axes.fill_between(thresholds, low, high, color=color, alpha=0.2, linewidth=0)
+    if lower_is_better and thresholds.min() > 0:
+        axes.set_xscale("log")
+    axes.set_xlabel(xlabel)
+    relation = "<=" if lower_is_better else ">="
+    axes.set_ylabel(f"fraction of runs with score {relation} tau")
+    axes.set_ylim(-0.02, 1.02)
+    axes.set_title(title, fontsize="medium")
+    axes.legend(loc="best", fontsize="small")
+    return save(figure, path)

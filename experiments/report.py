@@ -64,7 +64,7 @@ def write_report(
     accepted = tuple(check for _, check in state.code_changed) if accept_code_change else ()
     results = {name: runs for name, runs in results_of(config, state).items() if runs}
     if not results:
-        left_out = f"; left out: {_listing(excluded)}" if excluded else ""
+        left_out = f"; left out: {listing(excluded)}" if excluded else ""
         raise ValueError(f"{out_dir}: no finished runs to report{left_out}")
     optimal = _optimal_steps(results)
     window, final_window = config.smoothing_window, config.final_window
@@ -111,16 +111,47 @@ def write_report(
     summary_csv = out_dir / SUMMARY_FILE
     store.atomic_write_text(summary_csv, _summary_csv(summaries, optimal))
     markdown = out_dir / REPORT_FILE
-    text = render_markdown(config, summaries, optimal, seed) + _provenance(excluded, accepted)
+    text = (
+        render_markdown(config, summaries, optimal, seed)
+        + _evaluation_section(config, results)
+        + provenance(excluded, accepted)
+    )
     store.atomic_write_text(markdown, text)
     return Report(markdown, summary_csv, figures, summaries, optimal, excluded, accepted)
 
 
-def _listing(checks: tuple[store.RunCheck, ...]) -> str:
+def _evaluation_section(config: ExperimentConfig, results: dict[str, list[store.RunData]]) -> str:
+    """The greedy evaluation's table (``eval_episodes``), empty without one."""
+    if not config.eval_episodes:
+        return ""
+    lines = [
+        "## Greedy evaluation",
+        "",
+        f"{config.eval_episodes} greedy episodes per run after training, the first reset seeded "
+        "from the run's seed (`runs/<run>.eval.csv`); means over runs of each run's mean.",
+        "",
+        "| strategy | runs | greedy success | greedy steps | greedy return |",
+        "|---|---:|---:|---:|---:|",
+    ]
+    for name, runs in results.items():
+        evaluations = [r.evaluation for r in runs if r.evaluation is not None]
+        if not evaluations:
+            continue
+        success, steps, returns = (
+            float(np.mean([e[column].mean() for e in evaluations]))
+            for column in ("success", "steps", "return")
+        )
+        lines.append(
+            f"| {name} | {len(evaluations)} | {success:.3f} | {steps:.1f} | {returns:.2f} |"
+        )
+    return "\n".join([*lines, "", ""])
+
+
+def listing(checks: tuple[store.RunCheck, ...]) -> str:
     return "; ".join(f"{c.name} ({c.reason})" for c in checks)
 
 
-def _provenance(excluded: tuple[store.RunCheck, ...], accepted: tuple[store.RunCheck, ...]) -> str:
+def provenance(excluded: tuple[store.RunCheck, ...], accepted: tuple[store.RunCheck, ...]) -> str:
     """The report's section on runs left out and runs accepted under another code version."""
     lines: list[str] = []
     if accepted:

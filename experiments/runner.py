@@ -1,9 +1,11 @@
-"""Run an experiment: every (strategy, run) pair on a backend, verified, stored as it finishes.
+"""Run an experiment: every (task, strategy, run) on a backend, verified, stored as it finishes.
 
 The results folder holds ``config.toml`` (the resolved experiment, loadable again),
-``runs/<strategy>__<seed>.csv`` + ``.json`` for each finished run and, once every run has
-finished, ``episodes.csv`` with all of them in a fixed order. While an experiment writes, the
-folder is locked (:mod:`experiments.lock`): a second writer is refused and touches nothing.
+``runs/<strategy>__<seed>.csv`` + ``.json`` for each finished run (``runs/<task>/...`` in an
+experiment over tasks; ``.eval.csv`` beside them with a greedy evaluation) and, once every run
+has finished, ``episodes.csv`` (and ``evaluation.csv``) with all of them in a fixed order.
+While an experiment writes, the folder is locked (:mod:`experiments.lock`): a second writer is
+refused and touches nothing.
 
 Started again on the same folder, an experiment first verifies every run it finds
 (:func:`inspect_folder`, :func:`experiments.store.check_run`): a run whose files are damaged,
@@ -35,6 +37,7 @@ log = logging.getLogger(__name__)
 CONFIG_FILE = "config.toml"
 RUN_DIR = "runs"
 EPISODES_FILE = "episodes.csv"
+EVALUATION_FILE = "evaluation.csv"
 
 Task = Callable[[RunSpec], store.RunResult]
 
@@ -102,7 +105,8 @@ class _Inputs:
             try:
                 self._env[key] = fingerprint.env_inputs(spec.env)
             except (TypeError, ValueError, OSError) as error:
-                raise ConfigError(f"{spec.experiment.source}: [env]: {error}") from None
+                where = "[env]" if spec.task is None else f"task {spec.task!r}"
+                raise ConfigError(f"{spec.experiment.source}: {where}: {error}") from None
         return fingerprint.run_inputs(
             spec.experiment, spec.strategy, spec.env, spec.seed, self.task, self._env[key]
         )
@@ -121,7 +125,12 @@ def inspect_folder(
     specs = tuple(plan(config, only))
     checks = {
         spec.name: store.check_run(
-            run_dir, spec.name, config.episodes, spec.env.max_episode_steps, expected(spec)
+            run_dir,
+            spec.name,
+            config.episodes,
+            spec.env.max_episode_steps,
+            expected(spec),
+            config.eval_episodes,
         )
         for spec in specs
     }
@@ -157,7 +166,7 @@ def prepare_folder(
             )
         config = config if config.runs >= previous.runs else previous
     store.atomic_write_text(recorded, config_module.dumps(config))
-    store.remove_stale_temporaries(out_dir / RUN_DIR)
+    store.remove_stale_temporaries(out_dir / RUN_DIR, nested=True)
     store.remove_stale_temporaries(out_dir)
 
 
@@ -256,6 +265,11 @@ def _run_locked(
     computed = []
     by_name = {spec.name: spec for spec in state.pending}
     for result in backend.map_unordered(task, state.pending):
+        if result.name not in by_name:
+            raise ConfigError(
+                f"the task returned a run named {result.name!r}, which was not asked for "
+                "(a task must copy its RunSpec's strategy, seed and task into its result)"
+            )
         wanted = expected(by_name[result.name])
         inputs = fingerprint.normalized(result.inputs) if result.inputs else wanted
         found = fingerprint.differences(inputs, wanted)
@@ -289,23 +303,42 @@ def write_episodes(
     task: Task = train_run,
     accept_code_change: bool = False,
 ) -> Path | None:
-    """Gather every run of ``config`` into ``episodes.csv`` (strategy order, then run index),
-    once every run is finished and verified."""
+    """Gather every run of ``config`` into ``episodes.csv`` (task order, strategy order, then
+    run index; a ``task`` column first in an experiment over tasks), and the greedy episodes
+    into ``evaluation.csv``, once every run is finished and verified."""
     state = inspect_folder(config, out_dir, task, None, accept_code_change)
     if len(state.finished) != len(state.planned):
         return None
+    tasks = {t.name: i for i, t in enumerate(config.tasks)}
     order = {spec.name: i for i, spec in enumerate(config.strategies)}
     ordered = sorted(
-        state.finished, key=lambda item: (order[item[0].strategy.name], item[0].run_index)
+        state.finished,
+        key=lambda item: (
+            tasks.get(item[0].task or "", 0),
+            order[item[0].strategy.name],
+            item[0].run_index,
+        ),
     )
-    lines = ["strategy,run,seed," + ",".join(store.COLUMNS)]
-    for spec, _ in ordered:
-        text = store.run_paths(out_dir / RUN_DIR, spec.name)[0].read_text(encoding="utf-8")
-        prefix = f"{spec.strategy.name},{spec.run_index},{spec.seed},"
-        lines += [prefix + line for line in text.splitlines()[1:]]
-    path = out_dir / EPISODES_FILE
-    store.atomic_write_text(path, "\n".join(lines) + "\n")
-    return path
+    head = "task," if config.tasks else ""
+    files: list[tuple[str, tuple[str, ...], Callable[[Path, str], tuple[Path, ...]]]] = [
+        (EPISODES_FILE, store.COLUMNS, store.run_paths)
+    ]
+    if config.eval_episodes:
+        files.append((EVALUATION_FILE, store.EVAL_COLUMNS, _eval_paths))
+    for file_name, columns, paths in files:
+        lines = [f"{head}strategy,run,seed," + ",".join(columns)]
+        for spec, _ in ordered:
+            text = paths(out_dir / RUN_DIR, spec.name)[0].read_text(encoding="utf-8")
+            prefix = (f"{spec.task}," if config.tasks else "") + (
+                f"{spec.strategy.name},{spec.run_index},{spec.seed},"
+            )
+            lines += [prefix + line for line in text.splitlines()[1:]]
+        store.atomic_write_text(out_dir / file_name, "\n".join(lines) + "\n")
+    return out_dir / EPISODES_FILE
+
+
+def _eval_paths(run_dir: Path, name: str) -> tuple[Path]:
+    return (store.eval_path(run_dir, name),)
 
 
 def load_results(
@@ -320,9 +353,21 @@ def load_results(
 
 
 def results_of(config: ExperimentConfig, state: FolderState) -> dict[str, list[store.RunData]]:
-    """The verified data of a folder's finished runs, by strategy, in run order."""
-    results: dict[str, list[store.RunData]] = {s.name: [] for s in config.strategies}
+    """The verified data of a folder's finished runs, by strategy, in run order (an experiment
+    with one environment; :func:`results_by_task` for one over tasks)."""
+    return results_by_task(config, state).get(None, {s.name: [] for s in config.strategies})
+
+
+def results_by_task(
+    config: ExperimentConfig, state: FolderState
+) -> dict[str | None, dict[str, list[store.RunData]]]:
+    """The verified data of a folder's finished runs by task (None: the one environment),
+    then by strategy, in run order."""
+    names: list[str | None] = [t.name for t in config.tasks] or [None]
+    results: dict[str | None, dict[str, list[store.RunData]]] = {
+        name: {s.name: [] for s in config.strategies} for name in names
+    }
     for spec, check in sorted(state.finished, key=lambda item: item[0].run_index):
         assert check.data is not None
-        results[spec.strategy.name].append(check.data)
+        results[spec.task][spec.strategy.name].append(check.data)
     return results

@@ -22,6 +22,8 @@ class RunSeeds:
     """Seed of the environment's first ``reset`` (its noise generator ``env.np_random``)."""
     agent: int
     """Seed of the agent's own ``numpy.random.Generator``."""
+    evaluation: int
+    """Seed of the first reset of the greedy evaluation after training."""
 
 
 def run_seed(experiment_seed: int, run_index: int) -> int:
@@ -33,11 +35,13 @@ def run_seed(experiment_seed: int, run_index: int) -> int:
 
 
 def derive_seeds(seed: int) -> RunSeeds:
-    """Independent environment and agent seeds from one run seed."""
+    """Independent environment, agent and evaluation seeds from one run seed (the children
+    0, 1 and 2 of its ``SeedSequence``: adding the third left the first two as they were)."""
     if seed < 0:
         raise ValueError(f"seed must be >= 0, got {seed}")
-    env_child, agent_child = np.random.SeedSequence(seed).spawn(2)
+    env_child, agent_child, evaluation_child = np.random.SeedSequence(seed).spawn(3)
     return RunSeeds(
         env=int(env_child.generate_state(1, dtype=np.uint32)[0]),
         agent=int(agent_child.generate_state(1, dtype=np.uint32)[0]),
+        evaluation=int(evaluation_child.generate_state(1, dtype=np.uint32)[0]),
     )

@@ -58,7 +58,9 @@ def train_and_save(
     seeds = derive_seeds(seed)
     env = factory.check_env(config.env, origins or factory.env_origins(config.source))
     try:
-        agent = factory.make_agent(config, strategy, env, seeds.agent)
+        agent = factory.make_agent(
+            config, strategy, env, seeds.agent, bounds=config.env.observation_bounds
+        )
         optimal = factory.optimal_steps(env)
         if on_start is not None:
             on_start(optimal)

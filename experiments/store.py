@@ -36,6 +36,12 @@ COLUMNS = ("episode", "steps", "return", "success", "truncated", "leaves", "coll
 EpisodeRow = tuple[int, int, float, bool, bool, int, int]
 """One episode: number (from 1), steps, return, reached the goal, hit the cap, leaves, hits."""
 
+EVAL_COLUMNS = ("episode", "steps", "return", "success", "truncated", "collisions")
+"""Columns of a run's greedy evaluation CSV (``<run>.eval.csv``), one row per episode."""
+
+EvalRow = tuple[int, int, float, bool, bool, int]
+"""One greedy episode after training: number (from 1), steps, return, goal, cap, hits."""
+
 SIDECAR_FORMAT = "bullet_maze.run"
 SIDECAR_VERSION = 2
 """Version 2 added the data hash and the input fingerprints (version 1 sidecars do not
@@ -63,11 +69,15 @@ class RunResult:
     """Fingerprints of what the run actually used (:func:`experiments.fingerprint.run_inputs`),
     filled in by the worker; empty when a task does not say (the runner then records the
     inputs it expected)."""
+    task: str | None = None
+    """The task the run belongs to (None in an experiment with one environment)."""
+    evaluation: tuple[EvalRow, ...] = ()
+    """Greedy episodes after training (empty: no evaluation)."""
 
     @property
     def name(self) -> str:
-        """The run's name, ``<strategy>__<seed>``."""
-        return run_name(self.strategy, self.seed)
+        """The run's name, ``<strategy>__<seed>`` or ``<task>/<strategy>__<seed>``."""
+        return run_name(self.strategy, self.seed, self.task)
 
     @property
     def steps_per_second(self) -> float:
@@ -83,6 +93,8 @@ class RunData:
     columns: dict[str, np.ndarray]
     meta: dict[str, Any]
     """The sidecar (timings, ``optimal_steps``, ``inputs``, ...)."""
+    evaluation: dict[str, np.ndarray] | None = None
+    """The greedy evaluation's columns (:data:`EVAL_COLUMNS`), when the run has one."""
 
     @property
     def steps(self) -> np.ndarray:
@@ -112,9 +124,10 @@ class RunCheck:
         return self.status == "valid"
 
 
-def run_name(strategy: str, seed: int) -> str:
-    """``<strategy>__<seed>``, the CleanRL habit of naming a run by what and which seed."""
-    return f"{strategy}__{seed}"
+def run_name(strategy: str, seed: int, task: str | None = None) -> str:
+    """``<strategy>__<seed>``, the CleanRL habit of naming a run by what and which seed; a
+    task's runs are in its folder, ``<task>/<strategy>__<seed>``."""
+    return f"{strategy}__{seed}" if task is None else f"{task}/{strategy}__{seed}"
 
 
 def atomic_write_text(path: Path, text: str) -> None:
@@ -160,13 +173,31 @@ def run_paths(run_dir: Path, name: str) -> tuple[Path, Path]:
     return run_dir / f"{name}.csv", run_dir / f"{name}.json"
 
 
+def eval_path(run_dir: Path, name: str) -> Path:
+    """The greedy evaluation CSV of run ``name``."""
+    return run_dir / f"{name}.eval.csv"
+
+
 def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None = None) -> Path:
     """Store a finished run: its CSV, then the sidecar that vouches for it (the sidecar marks
     it finished). ``inputs`` are its fingerprints (default: those the result carries)."""
     csv_path, meta_path = run_paths(run_dir, result.name)
     text = format_rows(result.rows)
     data = text.encode("utf-8")
-    meta = {key: value for key, value in asdict(result).items() if key not in ("rows", "inputs")}
+    meta = {
+        key: value
+        for key, value in asdict(result).items()
+        if key not in ("rows", "inputs", "evaluation", "task")
+    }
+    evaluation = format_rows(result.evaluation, EVAL_COLUMNS) if result.evaluation else None
+    if result.task is not None:
+        meta["task"] = result.task
+    if evaluation is not None:
+        meta.update(
+            evaluation_episodes=len(result.evaluation),
+            evaluation_sha256=hashlib.sha256(evaluation.encode("utf-8")).hexdigest(),
+            evaluation_bytes=len(evaluation.encode("utf-8")),
+        )
     meta.update(
         format=SIDECAR_FORMAT,
         version=SIDECAR_VERSION,
@@ -178,6 +209,8 @@ def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None
         inputs=dict(inputs if inputs is not None else result.inputs),
     )
     meta["sidecar_sha256"] = fingerprint.digest(meta)  # of everything else in it
+    if evaluation is not None:
+        atomic_write_text(eval_path(run_dir, result.name), evaluation)
     atomic_write_text(csv_path, text)
     atomic_write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True) + "\n")
     return csv_path
@@ -185,7 +218,7 @@ def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None
 
 def remove_run(run_dir: Path, name: str) -> None:
     """Delete a run's files (to recompute it)."""
-    for path in run_paths(run_dir, name):
+    for path in (*run_paths(run_dir, name), eval_path(run_dir, name)):
         path.unlink(missing_ok=True)
 
 
@@ -195,14 +228,16 @@ def check_run(
     episodes: int,
     cap: int,
     expected_inputs: Mapping[str, Any] | None = None,
+    eval_episodes: int = 0,
 ) -> RunCheck:
     """Verify run ``name`` against its sidecar, its expected ``episodes`` and episode ``cap``,
-    and (if given) the inputs it should have been computed from."""
+    its greedy evaluation of ``eval_episodes`` episodes (if any), and (if given) the inputs it
+    should have been computed from."""
     csv_path, meta_path = run_paths(run_dir, name)
     if not csv_path.exists() and not meta_path.exists():
         return RunCheck(name, "missing")
     try:
-        data = _read_verified(run_dir, name, episodes, cap)
+        data = _read_verified(run_dir, name, episodes, cap, eval_episodes)
     except ValueError as error:
         return RunCheck(name, "invalid", str(error))
     if expected_inputs is None:
@@ -221,14 +256,20 @@ def check_run(
 
 
 def read_run(
-    run_dir: Path, name: str, episodes: int | None = None, cap: int | None = None
+    run_dir: Path,
+    name: str,
+    episodes: int | None = None,
+    cap: int | None = None,
+    eval_episodes: int = 0,
 ) -> RunData:
     """Read a finished run back as column arrays plus its sidecar, verified (``ValueError``
     naming the file and the defect otherwise)."""
-    return _read_verified(run_dir, name, episodes, cap)
+    return _read_verified(run_dir, name, episodes, cap, eval_episodes)
 
 
-def _read_verified(run_dir: Path, name: str, episodes: int | None, cap: int | None) -> RunData:
+def _read_verified(
+    run_dir: Path, name: str, episodes: int | None, cap: int | None, eval_episodes: int = 0
+) -> RunData:
     csv_path, meta_path = run_paths(run_dir, name)
     meta = _read_sidecar(meta_path, name)
     recorded = meta["episodes"]
@@ -250,7 +291,39 @@ def _read_verified(run_dir: Path, name: str, episodes: int | None, cap: int | No
     columns = parse_rows(raw, str(csv_path), cap)
     if len(columns["steps"]) != recorded:
         raise ValueError(f"{csv_path}: {len(columns['steps'])} rows, its sidecar says {recorded}")
-    return RunData(name=name, columns=columns, meta=meta)
+    evaluation = (
+        _read_evaluation(run_dir, name, meta, eval_episodes, cap) if eval_episodes else None
+    )
+    return RunData(name=name, columns=columns, meta=meta, evaluation=evaluation)
+
+
+def _read_evaluation(
+    run_dir: Path, name: str, meta: Mapping[str, Any], episodes: int, cap: int | None
+) -> dict[str, np.ndarray]:
+    """The greedy evaluation CSV of a run, against its sidecar's size, hash and count."""
+    path = eval_path(run_dir, name)
+    recorded = meta.get("evaluation_episodes")
+    if recorded != episodes:
+        raise ValueError(
+            f"{path}: the sidecar records {recorded!r} greedy episodes, the experiment has "
+            f"{episodes}"
+        )
+    for key, kind in (("evaluation_bytes", int), ("evaluation_sha256", str)):
+        value = meta.get(key)
+        if isinstance(value, bool) or not isinstance(value, kind):
+            raise ValueError(f"{run_dir / name}.json: {key} is {value!r}")
+    if not path.is_file():
+        raise ValueError(f"{path}: missing (its sidecar records it)")
+    size = path.stat().st_size
+    if size != meta["evaluation_bytes"] or size > MAX_ROW_BYTES * (episodes + 1):
+        raise ValueError(f"{path}: differs from its sidecar ({size} bytes; edited, cut or damaged)")
+    raw = path.read_bytes()
+    if hashlib.sha256(raw).hexdigest() != meta["evaluation_sha256"]:
+        raise ValueError(f"{path}: differs from its sidecar (SHA-256 mismatch; edited or damaged)")
+    columns = parse_rows(raw, str(path), cap, EVAL_COLUMNS)
+    if len(columns["steps"]) != episodes:
+        raise ValueError(f"{path}: {len(columns['steps'])} rows, its sidecar says {episodes}")
+    return columns
 
 
 def _read_sidecar(path: Path, name: str) -> dict[str, Any]:
@@ -282,38 +355,39 @@ def _read_sidecar(path: Path, name: str) -> dict[str, Any]:
     return meta
 
 
-_INTEGER_COLUMNS = ("episode", "steps", "success", "truncated", "leaves", "collisions")
-
-
-def parse_rows(raw: bytes, where: str, cap: int | None = None) -> dict[str, np.ndarray]:
-    """A run CSV's columns, after checking every row (``ValueError`` naming ``where``)."""
+def parse_rows(
+    raw: bytes, where: str, cap: int | None = None, expected: Sequence[str] = COLUMNS
+) -> dict[str, np.ndarray]:
+    """A run CSV's columns (``expected``: :data:`COLUMNS` or :data:`EVAL_COLUMNS`), after
+    checking every row (``ValueError`` naming ``where``)."""
+    columns_count = len(expected)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
         raise ValueError(f"{where}: not UTF-8 text") from None
     header, _, body = text.partition("\n")
-    if header != ",".join(COLUMNS):
-        raise ValueError(f"{where}: header {header[:200]!r} differs from {','.join(COLUMNS)!r}")
+    if header != ",".join(expected):
+        raise ValueError(f"{where}: header {header[:200]!r} differs from {','.join(expected)!r}")
     if not body or not body.endswith("\n"):
         raise ValueError(f"{where}: no rows, or the last row is cut")
     lines = body[:-1].split("\n")
-    if any(line.count(",") != len(COLUMNS) - 1 for line in lines):
-        bad = next(i for i, line in enumerate(lines) if line.count(",") != len(COLUMNS) - 1)
-        raise ValueError(f"{where}: row {bad + 1} does not have {len(COLUMNS)} fields")
+    if any(line.count(",") != columns_count - 1 for line in lines):
+        bad = next(i for i, line in enumerate(lines) if line.count(",") != columns_count - 1)
+        raise ValueError(f"{where}: row {bad + 1} does not have {columns_count} fields")
     try:
         with warnings.catch_warnings():  # numpy warns or raises at the first non-number
             warnings.simplefilter("ignore", DeprecationWarning)
             values = np.fromstring(body.replace("\n", ","), dtype=np.float64, sep=",")
     except ValueError:
         values = np.zeros(0)
-    if values.size != len(lines) * len(COLUMNS):
+    if values.size != len(lines) * columns_count:
         raise ValueError(f"{where}: a field is not a number")
-    table = values.reshape(len(lines), len(COLUMNS))
+    table = values.reshape(len(lines), columns_count)
     if not np.isfinite(table).all():
         row = int(np.flatnonzero(~np.isfinite(table).all(axis=1))[0])
         raise ValueError(f"{where}: row {row + 1} holds a value that is not finite")
     columns: dict[str, np.ndarray] = {}
-    for index, column in enumerate(COLUMNS):
+    for index, column in enumerate(expected):
         values = table[:, index]
         if column == "return":
             columns[column] = values
@@ -337,7 +411,7 @@ def _check_ranges(columns: dict[str, np.ndarray], where: str, cap: int | None) -
             (columns["success"] + columns["truncated"]) > 1,
             "an episode both succeeded and hit the cap",
         ),
-        (columns["leaves"] < 1, "leaves below 1"),
+        (columns.get("leaves", steps) < 1, "leaves below 1"),
         (
             (columns["collisions"] < 0) | (columns["collisions"] > steps),
             "collisions outside 0..steps",
@@ -353,11 +427,13 @@ def _check_ranges(columns: dict[str, np.ndarray], where: str, cap: int | None) -
             raise ValueError(f"{where}: row {int(np.flatnonzero(bad)[0]) + 1}: {message}")
 
 
-def remove_stale_temporaries(run_dir: Path) -> int:
-    """Delete temporary files left by a killed writer; returns how many there were. Call it
-    only while holding the folder's lock (:mod:`experiments.lock`): a live writer's
-    temporaries look the same."""
-    stale = list(run_dir.glob(".*.tmp")) if run_dir.is_dir() else []
+def remove_stale_temporaries(run_dir: Path, nested: bool = False) -> int:
+    """Delete temporary files left by a killed writer (``nested``: in the task folders below
+    ``run_dir`` too); returns how many there were. Call it only while holding the folder's
+    lock (:mod:`experiments.lock`): a live writer's temporaries look the same."""
+    if not run_dir.is_dir():
+        return 0
+    stale = [*run_dir.glob(".*.tmp"), *(run_dir.glob("*/.*.tmp") if nested else ())]
     for path in stale:
         path.unlink(missing_ok=True)
     return len(stale)

@@ -15,9 +15,10 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from experiments import factory, fingerprint
+from experiments.evaluation import evaluate
 from experiments.plan import RunSpec
 from experiments.seeding import derive_seeds
-from experiments.store import EpisodeRow, RunResult
+from experiments.store import EpisodeRow, EvalRow, RunResult
 
 if TYPE_CHECKING:
     import gymnasium as gym
@@ -104,8 +105,18 @@ def train(
     return training
 
 
+def evaluation_rows(env: gym.Env, agent: Any, episodes: int, seed: int) -> tuple[EvalRow, ...]:
+    """``episodes`` greedy episodes of a trained agent, the first reset seeded with ``seed``."""
+    result = evaluate(env, agent, episodes, seed=seed)
+    return tuple(
+        (i + 1, e.steps, e.episode_return, e.success, e.truncated, e.collisions)
+        for i, e in enumerate(result.episodes)
+    )
+
+
 def train_run(spec: RunSpec) -> RunResult:
-    """The task of one run: a fresh environment and agent seeded from the run's seed.
+    """The task of one run: a fresh environment and agent seeded from the run's seed, trained,
+    then (if the experiment asks) evaluated greedily from the run's evaluation seed.
 
     The result carries the fingerprints of the inputs this worker actually used (the layout
     its environment loaded), which the runner checks against those it expected.
@@ -116,16 +127,25 @@ def train_run(spec: RunSpec) -> RunResult:
     try:
         used = fingerprint.env_inputs(spec.env, layout=getattr(env.unwrapped, "layout", None))
         inputs = fingerprint.run_inputs(experiment, strategy, spec.env, spec.seed, train_run, used)
-        agent = factory.make_agent(experiment, strategy, env, seeds.agent)
+        agent = factory.make_agent(
+            experiment, strategy, env, seeds.agent, bounds=spec.env.observation_bounds
+        )
         rss_start = resident_memory_mb()
         memory_every = max(1, experiment.episodes // 20)
         training = train(
             env, agent, experiment.episodes, env_seed=seeds.env, memory_every=memory_every
         )
+        evaluation = (
+            evaluation_rows(env, agent, experiment.eval_episodes, seeds.evaluation)
+            if experiment.eval_episodes
+            else ()
+        )
         optimal = factory.optimal_steps(env)
     finally:
         env.close()
     return RunResult(
+        task=spec.task,
+        evaluation=evaluation,
         strategy=strategy.name,
         run_index=spec.run_index,
         seed=spec.seed,
@@ -136,6 +156,7 @@ def train_run(spec: RunSpec) -> RunResult:
         meta={
             "env_seed": seeds.env,
             "agent_seed": seeds.agent,
+            **({"evaluation_seed": seeds.evaluation} if evaluation else {}),
             "pid": os.getpid(),
             "cpu_time_s": training.cpu_time_s,
             "rss_mb_start": rss_start,

@@ -32,7 +32,7 @@ def fake_run(spec: RunSpec) -> RunResult:
     if os.environ.get("STANDIN_DIE_ONCE") and os.environ.get("STANDIN_DIE_NAME", spec.name) == (
         spec.name
     ):
-        marker = Path(os.environ["STANDIN_DIE_ONCE"]) / spec.name
+        marker = Path(os.environ["STANDIN_DIE_ONCE"]) / spec.name.replace("/", "__")
         if not marker.exists():
             marker.write_text("died once\n")
             os.kill(os.getpid(), signal.SIGKILL)
@@ -67,6 +67,7 @@ def fake_run(spec: RunSpec) -> RunResult:
         env_steps=int(steps.sum()),
         optimal_steps=20.0,
         meta={"pid": os.getpid()},
+        task=spec.task,
     )
 
 
@@ -111,4 +112,54 @@ def tiny_config(folder: Path, episodes: int = 4, cap: int = 120, runs: int = 2) 
     """A three-strategy experiment file small enough for a test."""
     path = folder / "tiny.toml"
     path.write_text(TINY.format(episodes=episodes, cap=cap).replace("runs = 2", f"runs = {runs}"))
+    return path
+
+
+TINY_SUITE = """
+name = "tiny"
+dev = ["open", "rooms:seed=0,rows=2,cols=2"]
+test = ["rooms:seed=1000,rows=2,cols=2"]
+"""
+
+TINY_SUITE_EXPERIMENT = """
+[experiment]
+name = "tinysuite"
+seed = 3
+runs = {runs}
+episodes = {episodes}
+baseline = "eps"
+smoothing_window = 2
+final_window = 2
+eval_episodes = 2
+
+[env]
+suite = "{suite}"
+split = {split}
+max_episode_steps = 150
+
+[agent]
+split_min_samples = 50
+
+[[strategy]]
+name = "eps"
+exploration = "epsilon-greedy"
+exploration_params = {{ epsilon = 0.1 }}
+
+[[strategy]]
+name = "grid-6"
+agent = "grid"
+resolution = 6
+exploration = "epsilon-greedy"
+exploration_params = {{ epsilon = 0.1 }}
+"""
+
+
+def tiny_suite_config(folder: Path, episodes: int = 6, runs: int = 2, split: str = '"dev"') -> Path:
+    """A two-strategy experiment over a three-layout suite (two dev layouts, one test)."""
+    suite = folder / "tiny_suite.toml"
+    suite.write_text(TINY_SUITE)
+    path = folder / "tinysuite.toml"
+    path.write_text(
+        TINY_SUITE_EXPERIMENT.format(episodes=episodes, runs=runs, suite=suite, split=split)
+    )
     return path

@@ -117,3 +117,53 @@ def test_a_sidecar_that_is_not_an_object_is_invalid(tmp_path: Path):
     for text in ("[]", "null", '"x"', "1e999", "{" * 100_000, "\xff"):
         meta_path.write_text(text, encoding="latin-1")
         assert _check(tmp_path).status == "invalid"
+
+
+EVAL_ROWS = tuple((i, 12 + i, 4.9 - 0.01 * i, True, False, i % 2) for i in range(1, 6))
+
+
+def _stored_with_evaluation(folder: Path) -> Path:
+    result = store.RunResult("eps", 0, 11, ROWS, 1.0, 100, 20.0, task="open", evaluation=EVAL_ROWS)
+    store.write_run(folder, result, INPUTS)
+    return store.eval_path(folder, "open/eps__11")
+
+
+def _check_evaluated(folder: Path, eval_episodes: int = 5) -> store.RunCheck:
+    return store.check_run(folder, "open/eps__11", 80, 100, INPUTS, eval_episodes)
+
+
+def test_a_runs_evaluation_verifies_in_its_task_folder(tmp_path: Path):
+    path = _stored_with_evaluation(tmp_path)
+    assert path == tmp_path / "open" / "eps__11.eval.csv"
+    check = _check_evaluated(tmp_path)
+    assert check.status == "valid"
+    assert check.data is not None
+    assert check.data.evaluation is not None
+    assert check.data.evaluation["steps"].tolist() == [row[1] for row in EVAL_ROWS]
+    assert _check_evaluated(tmp_path, 6).status == "invalid"
+    assert "records 5 greedy episodes" in _check_evaluated(tmp_path, 6).reason
+    store.remove_run(tmp_path, "open/eps__11")
+    assert not any((tmp_path / "open").iterdir())
+
+
+def test_random_damage_to_an_evaluation_is_always_found(tmp_path: Path):
+    path = _stored_with_evaluation(tmp_path)
+    original = path.read_bytes()
+    rng = np.random.default_rng(8)
+    for _ in range(100):
+        data = bytearray(original)
+        position = int(rng.integers(len(data)))
+        kind = int(rng.integers(3))
+        if kind == 0:
+            data = data[:position]
+        elif kind == 1:
+            data[position] ^= int(rng.integers(1, 256))
+        else:
+            data[position:position] = b"1,"
+        path.write_bytes(bytes(data))
+        check = _check_evaluated(tmp_path)
+        assert check.status == ("valid" if bytes(data) == original else "invalid"), check
+    path.unlink()
+    check = _check_evaluated(tmp_path)
+    assert check.status == "invalid"
+    assert "missing" in check.reason
