@@ -17,7 +17,7 @@ RangeNormalization = Literal["root", "none"]
 SplitPointRule = Literal["quest", "midpoint"]
 ThresholdUnits = Literal["reward", "scale"]
 Planning = Literal["none", "sweep"]
-ScaleRule = Literal["reward_median", "return_std"]
+ScaleRule = Literal["reward_median", "return_std", "return_iqr"]
 
 
 @dataclass(frozen=True)
@@ -127,7 +127,7 @@ class TreeConfig:
             raise ValueError(f"TreeConfig.max_leaves must be an int >= 1, got {self.max_leaves!r}")
         _check_choice("threshold_units", self.threshold_units, ("reward", "scale"))
         _check_choice("planning", self.planning, ("none", "sweep"))
-        _check_choice("scale_rule", self.scale_rule, ("reward_median", "return_std"))
+        _check_choice("scale_rule", self.scale_rule, ("reward_median", "return_std", "return_iqr"))
         for name, least in (("model_window", 1), ("sweep_backups", 0), ("initial_depth", 0)):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < least:

@@ -25,7 +25,7 @@ from agent.inspection import LeafInfo, render_partition
 from agent.leaf_model import LeafModel
 from agent.partition import Partition
 from agent.random_stream import UniformStream
-from agent.scale import ReturnScale, RewardScale
+from agent.scale import ReturnScale, ReturnSpread, RewardScale
 from agent.smdp import epoch_discounts, epoch_returns, leaf_update
 from agent.spaces import action_count, observation_bounds
 
@@ -85,9 +85,13 @@ class SMDPAgent:
         self.uniform = UniformStream(self.rng)
         """Every draw of the exploration strategies, from :attr:`rng` in blocks."""
         cfg = self.config
-        self.scale: ReturnScale | RewardScale = (
-            ReturnScale() if cfg.scale_rule == "return_std" else RewardScale(cfg.gamma)
-        )
+        self.scale: ReturnScale | ReturnSpread | RewardScale
+        if cfg.scale_rule == "return_std":
+            self.scale = ReturnScale()
+        elif cfg.scale_rule == "return_iqr":
+            self.scale = ReturnSpread()
+        else:
+            self.scale = RewardScale(cfg.gamma)
         """The reward scale measured so far (``TreeConfig.threshold_units="scale"``)."""
         self._track_scale = cfg.threshold_units == "scale"
         self.model: LeafModel | None = (
@@ -241,7 +245,7 @@ class SMDPAgent:
         returns = epoch_returns(rs, bootstrap, cfg.gamma)
         new, errors = leaf_update(old, returns, cfg.alpha)
         if self._track_scale:
-            self.scale.add(returns if cfg.scale_rule == "return_std" else rs)
+            self.scale.add(rs if cfg.scale_rule == "reward_median" else returns)
         model = self.model
         if model is not None and end_x is not None:
             before = max(row)

@@ -29,7 +29,7 @@ from agent.error_buffer import ErrorBuffer
 from agent.split_statistics import choose_split, should_split
 
 if TYPE_CHECKING:
-    from agent.scale import ReturnScale, RewardScale
+    from agent.scale import ReturnScale, ReturnSpread, RewardScale
 
 
 class PartitionTree:
@@ -52,7 +52,7 @@ class PartitionTree:
         self._seen_low = [math.inf] * self.dims
         self._seen_high = [-math.inf] * self.dims
         self._root_width = np.asarray(self.root_high) - np.asarray(self.root_low)
-        self.scale: ReturnScale | RewardScale | None = None
+        self.scale: ReturnScale | ReturnSpread | RewardScale | None = None
         """Set by the agent when ``config.threshold_units == "scale"``: the split thresholds are
         then multiples of ``scale.value`` (the variance threshold of its square)."""
         self._dim: list[int] = [-1]
