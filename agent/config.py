@@ -79,6 +79,12 @@ class TreeConfig:
     """The measured unit of ``threshold_units="scale"``: "return_std", the standard deviation of
     every eq. (9) return so far (:class:`agent.scale.ReturnScale`), or "reward_median", the
     median nonzero |reward| over 1 - gamma (:class:`agent.scale.RewardScale`)."""
+    split_min_t: float = 0.0
+    """A fourth split condition, a significance gate: split only if, in some dimension, the
+    inputs with positive errors and those with negative errors lie apart by at least this Welch
+    t statistic (eq. (12) without its range weight; dimensionless, so it needs no scale). It
+    refines fast where the values differ clearly (deterministic tasks) and waits for more
+    evidence where the returns are noisy. 0: off (the paper's three conditions)."""
     planning: Planning = "none"
     """"none": eq. (10) alone (the paper). "sweep": an empirical SMDP model of each (leaf, action)
     over its last ``model_window`` epochs gives Q-bar, and prioritized sweeping pushes each
@@ -137,7 +143,7 @@ class TreeConfig:
                 f"TreeConfig.initial_depth must be at most 16 (65,536 leaves), "
                 f"got {self.initial_depth!r}"
             )
-        for name in ("sweep_tolerance", "model_bonus"):
+        for name in ("sweep_tolerance", "model_bonus", "split_min_t"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int | float) or not value >= 0.0:
                 raise ValueError(f"TreeConfig.{name} must be a number >= 0, got {value!r}")

@@ -184,7 +184,16 @@ class PartitionTree:
         if self.config.range_normalization == "root":
             with np.errstate(divide="ignore", invalid="ignore"):
                 ranges = np.where(root_width > 0.0, ranges / root_width, 0.0)
-        choice = choose_split(inputs, errors, low, high, ranges, min_width, self.config.split_point)
+        choice = choose_split(
+            inputs,
+            errors,
+            low,
+            high,
+            ranges,
+            min_width,
+            self.config.split_point,
+            self.config.split_min_t,
+        )
         if choice is None:
             return None
         dim, value = choice

@@ -82,7 +82,7 @@ GENERAL = Preset(
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
-        split_min_samples=200,
+        split_min_samples=100,
         split_max_abs_mean=0.5,
         split_min_variance=0.0002,
         planning="sweep",

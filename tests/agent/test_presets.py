@@ -49,3 +49,11 @@ def test_each_preset_builds_fresh_agents(name: str) -> None:
 def test_unknown_preset_lists_the_names() -> None:
     with pytest.raises(ValueError, match=r"'fastest'.*general"):
         preset("fastest")
+
+
+def test_general_paper_experiment_spells_out_the_general_preset() -> None:
+    data = tomllib.loads((EXPERIMENT_DIR / "general_paper.toml").read_text())
+    spec = next(s for s in data["strategy"] if s["name"] == "general")
+    general = preset("general")
+    assert spec["exploration"] == general.exploration
+    assert TreeConfig(**{**data["agent"], **spec["config"]}) == general.config
