@@ -94,8 +94,9 @@ def make_env(task: Task) -> Any:
 
 
 def make_agent(name: str, task: Task, env: Any, seed: int) -> Any:
-    """An agent by name: a preset (``general``, ``paper``, ``paper-literal``), a preset with
-    another strategy (``general+boltzmann``), ``tile``, ``adaptive-q`` or ``grid<N>``."""
+    """An agent by name: a preset (``general``, ``paper``, ``paper-literal``), a preset's config
+    with another strategy (``general+boltzmann``; ``optimistic`` starts at the task's
+    ``r_max / (1 - gamma)``), ``tile``, ``adaptive-q`` or ``grid<N>``."""
     from agent import PRESETS, AdaptiveQAgent, GridAgent, TileCodingAgent, make_exploration
 
     space, actions = env.observation_space, env.action_space
@@ -105,7 +106,8 @@ def make_agent(name: str, task: Task, env: Any, seed: int) -> Any:
     if base in PRESETS and strategy:
         from agent import TreeAgent
 
-        exploration = make_exploration(strategy + ("+tabu" if strategy == "tabu" else ""))
+        params = {"r_max": task.r_max} if strategy.split("+")[0] == "optimistic" else {}
+        exploration = make_exploration(strategy, **params)
         return TreeAgent(space, actions, exploration, seed, PRESETS[base].config)
     if name == "tile":
         return TileCodingAgent(space, actions, seed)
