@@ -13,7 +13,7 @@ approximation"): the defaults are their Mountain Car settings, 8 tilings, step s
 when every reward is negative). ``gamma`` defaults to the learner's 0.99 (the book uses 1 on
 Mountain Car).
 
-Tiles are numbered on first sight by a table of at most ``max_features`` entries per action set
+Tiles are numbered on first sight by a table of at most ``max_features`` (2^20) entries
 (Sutton's ``tiles3`` index hash table, without its hashing: a full table is an error, never a
 silent collision). An unbounded observation dimension (CartPole's velocities) is squashed onto
 (-1, 1) by ``x / (1 + |x|)`` before tiling (:func:`agent.spaces.squash`): a documented rule for
@@ -124,7 +124,7 @@ class TileCodingAgent:
         lam: float = 0.9,
         gamma: float = 0.99,
         epsilon: float = 0.0,
-        max_features: int = 1 << 16,
+        max_features: int = 1 << 20,
         bounds: tuple[Sequence[float], Sequence[float]] | None = None,
         collision_key: str = "collision",
     ) -> None:
