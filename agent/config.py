@@ -104,6 +104,11 @@ class TreeConfig:
     """The tree starts with its root split at the midpoints ``initial_depth`` levels deep, one
     dimension after the other (2^initial_depth leaves); an unbounded dimension is split at 0
     once. 0: a single root (the paper)."""
+    presplit_each_dimension: bool = False
+    """The root starts split once in every dimension, at its midpoint (0 for an unbounded one):
+    2^d leaves, as ``initial_depth = d`` (added to ``initial_depth``). It gives the tree the
+    sign of every input from the start, where a task's values are uniform until its goal is
+    first reached (Acrobot) and the split test alone never leaves the root."""
 
     def __post_init__(self) -> None:
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)
@@ -138,6 +143,11 @@ class TreeConfig:
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < least:
                 raise ValueError(f"TreeConfig.{name} must be an int >= {least}, got {value!r}")
+        if not isinstance(self.presplit_each_dimension, bool):
+            raise TypeError(
+                f"TreeConfig.presplit_each_dimension must be a bool, "
+                f"got {self.presplit_each_dimension!r}"
+            )
         if self.initial_depth > 16:
             raise ValueError(
                 f"TreeConfig.initial_depth must be at most 16 (65,536 leaves), "

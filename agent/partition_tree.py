@@ -64,7 +64,14 @@ class PartitionTree:
         self._depth: list[int] = [0]
         self._buffers: dict[int, ErrorBuffer] = {}
         self.n_leaves = 1
-        self._presplit(config.initial_depth)
+        depth = config.initial_depth + (self.dims if config.presplit_each_dimension else 0)
+        if depth > 16:
+            raise ValueError(
+                f"the tree would start with 2^{depth} leaves (initial_depth "
+                f"{config.initial_depth}, presplit_each_dimension over {self.dims} dimensions); "
+                "at most 2^16"
+            )
+        self._presplit(depth)
 
     def _presplit(self, depth: int) -> None:
         """``TreeConfig.initial_depth``: split every leaf at its midpoint, level by level, along

@@ -28,7 +28,7 @@ def greedy_after(task: str, name: str, episodes: int, seed: int) -> tuple[float,
 @pytest.mark.parametrize(
     ("task", "episodes", "seed", "general_at_least", "paper_at_most"),
     [
-        ("MountainCar-v0", 150, 0, -160.0, -200.0),  # the paper's tree never reaches the flag
+        ("MountainCar-v0", 150, 0, -180.0, -200.0),  # the paper's tree never reaches the flag
         ("CartPole-v1", 250, 0, 120.0, 60.0),
         ("Acrobot-v1", 40, 0, -250.0, -500.0),
     ],

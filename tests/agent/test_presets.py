@@ -34,7 +34,8 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     changed = {k for k, v in general.to_dict().items() if v != getattr(TreeConfig(), k)}
     beyond = {"threshold_units", "scale_rule", "planning", "model_window", "sweep_backups"}
     table_one = {"split_min_samples", "split_max_abs_mean", "split_min_variance"}
-    assert changed <= beyond | table_one | {"initial_depth", "model_bonus", "sweep_tolerance"}
+    others = {"initial_depth", "presplit_each_dimension", "model_bonus", "sweep_tolerance"}
+    assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
 
 
