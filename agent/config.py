@@ -15,6 +15,9 @@ from typing import Any, Literal
 ErrorBuffer = Literal["clear", "window"]
 RangeNormalization = Literal["root", "none"]
 SplitPointRule = Literal["quest", "midpoint"]
+ThresholdUnits = Literal["reward", "scale"]
+Planning = Literal["none", "sweep"]
+ScaleRule = Literal["reward_median", "return_std", "return_iqr"]
 
 
 @dataclass(frozen=True)
@@ -63,6 +66,50 @@ class TreeConfig:
     max_leaves: int = 4096
     """The tree stops splitting at this many leaves, which bounds memory (a guard)."""
 
+    # Beyond the paper: every field below defaults to the paper's behaviour (docs/paper-notes.md,
+    # "Beyond the paper: a learner that is fast everywhere").
+    threshold_units: ThresholdUnits = "reward"
+    """Units of ``split_max_abs_mean``, ``split_min_variance`` and ``sweep_tolerance`` and
+    ``model_bonus``: "reward" (as printed: Table I's values are in the maze's reward units) or
+    "scale" (multiples of the value unit the agent measures, the median nonzero |reward| seen so
+    far over 1 - gamma, :class:`agent.scale.RewardScale`: 1 on the paper's maze, 100 on
+    MountainCar; the variance threshold is a multiple of its square), so that one set of values
+    fits any reward scale."""
+    scale_rule: ScaleRule = "return_std"
+    """The measured unit of ``threshold_units="scale"``: "return_std", the standard deviation of
+    every eq. (9) return so far (:class:`agent.scale.ReturnScale`), or "reward_median", the
+    median nonzero |reward| over 1 - gamma (:class:`agent.scale.RewardScale`)."""
+    split_min_t: float = 0.0
+    """A fourth split condition, a significance gate: split only if, in some dimension, the
+    inputs with positive errors and those with negative errors lie apart by at least this Welch
+    t statistic (eq. (12) without its range weight; dimensionless, so it needs no scale). It
+    refines fast where the values differ clearly (deterministic tasks) and waits for more
+    evidence where the returns are noisy. 0: off (the paper's three conditions)."""
+    planning: Planning = "none"
+    """"none": eq. (10) alone (the paper). "sweep": an empirical SMDP model of each (leaf, action)
+    over its last ``model_window`` epochs gives Q-bar, and prioritized sweeping pushes each
+    change back to the leaves whose epochs end there (:mod:`agent.leaf_model`)."""
+    model_window: int = 32
+    """Epochs kept per (leaf, action) by ``planning="sweep"`` (the model follows a changing
+    policy by forgetting older epochs)."""
+    sweep_backups: int = 16
+    """Backups of prioritized sweeping after each epoch (``planning="sweep"``)."""
+    sweep_tolerance: float = 1e-3
+    """A leaf whose V-bar moved by more than this queues its predecessors (``threshold_units``)."""
+    model_bonus: float = 0.0
+    """MBIE-EB bonus (Strehl and Littman 2008) ``beta / sqrt(n(leaf, a))`` added to every model
+    backup, ``beta`` in ``threshold_units``, n the epochs recorded for (leaf, a); it propagates
+    through the sweeps, so the greedy policy heads for what is least tried (0: none)."""
+    initial_depth: int = 0
+    """The tree starts with its root split at the midpoints ``initial_depth`` levels deep, one
+    dimension after the other (2^initial_depth leaves); an unbounded dimension is split at 0
+    once. 0: a single root (the paper)."""
+    presplit_each_dimension: bool = False
+    """The root starts split once in every dimension, at its midpoint (0 for an unbounded one):
+    2^d leaves, as ``initial_depth = d`` (added to ``initial_depth``). It gives the tree the
+    sign of every input from the start, where a task's values are uniform until its goal is
+    first reached (Acrobot) and the split test alone never leaves the root."""
+
     def __post_init__(self) -> None:
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)
         _check_range("gamma", self.gamma, 0.0, 1.0)
@@ -89,6 +136,29 @@ class TreeConfig:
         _check_range("min_leaf_fraction", self.min_leaf_fraction, 0.0, 0.5, low_open=True)
         if not isinstance(self.max_leaves, int) or self.max_leaves < 1:
             raise ValueError(f"TreeConfig.max_leaves must be an int >= 1, got {self.max_leaves!r}")
+        _check_choice("threshold_units", self.threshold_units, ("reward", "scale"))
+        _check_choice("planning", self.planning, ("none", "sweep"))
+        _check_choice("scale_rule", self.scale_rule, ("reward_median", "return_std", "return_iqr"))
+        for name, least in (("model_window", 1), ("sweep_backups", 0), ("initial_depth", 0)):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int) or value < least:
+                raise ValueError(f"TreeConfig.{name} must be an int >= {least}, got {value!r}")
+        if not isinstance(self.presplit_each_dimension, bool):
+            raise TypeError(
+                f"TreeConfig.presplit_each_dimension must be a bool, "
+                f"got {self.presplit_each_dimension!r}"
+            )
+        if self.initial_depth > 16:
+            raise ValueError(
+                f"TreeConfig.initial_depth must be at most 16 (65,536 leaves), "
+                f"got {self.initial_depth!r}"
+            )
+        for name in ("sweep_tolerance", "model_bonus", "split_min_t"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int | float) or not value >= 0.0:
+                raise ValueError(f"TreeConfig.{name} must be a number >= 0, got {value!r}")
+            if not math.isfinite(value):
+                raise ValueError(f"TreeConfig.{name} must be finite, got {value!r}")
 
     def to_dict(self) -> dict[str, Any]:
         """The fields as a JSON-ready dict."""

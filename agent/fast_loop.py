@@ -99,6 +99,19 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "children_inherit_samples": bool,
     "min_leaf_fraction": float,
     "max_leaves": int,
+    # Beyond the paper (issue 9): the kernel runs none of these, so only the values that leave
+    # the learner as the paper's. The split test runs in Python, so its options take any value;
+    # the others matter only with a measured unit or the model, which turn the loop off here.
+    "threshold_units": ("reward",),
+    "scale_rule": ("return_std", "return_iqr", "reward_median"),
+    "split_min_t": (float, int),
+    "planning": ("none",),
+    "model_window": int,
+    "sweep_backups": int,
+    "sweep_tolerance": (float, int),
+    "model_bonus": (float, int),
+    "initial_depth": int,
+    "presplit_each_dimension": bool,
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""
@@ -170,6 +183,10 @@ AGENT_ATTRIBUTES = {
     "q",
     "visits",
     "episodes_done",
+    "scale",
+    "_track_scale",
+    "model",
+    "q_init",
 }
 AGENT_CLASSES: dict[type, tuple[type, set[str]]] = {
     TreeAgent: (PartitionTree, AGENT_ATTRIBUTES),
@@ -240,13 +257,13 @@ def _env_functions(base: Any) -> dict[str, Any]:
 
 
 FINGERPRINTS = {
-    "SMDPAgent._run_episode": "5b46a3f8d1a7c8b6",
-    "SMDPAgent._end_epoch": "3d59b2f6d12c80a4",
-    "SMDPAgent._end_held_run": "e2ff8534fb590926",
-    "SMDPAgent._grow": "4812c9c927bd461a",
+    "SMDPAgent._run_episode": "0c3f07fce917b80a",
+    "SMDPAgent._end_epoch": "9d8ecf2f01acf49e",
+    "SMDPAgent._end_held_run": "d869d34667c3067f",
+    "SMDPAgent._grow": "df200e3fc423ac39",
     "PartitionTree.leaf_of": "ee41c6188076754e",
-    "PartitionTree.record": "59927c0165e2e63b",
-    "PartitionTree._try_split": "ee4f860b7b6a4fd8",
+    "PartitionTree.record": "c6ca80ffc6949cf0",
+    "PartitionTree._try_split": "9016b187d3175103",
     "PartitionTree.split": "d41c976a347495ae",
     "UniformGrid.leaf_of": "d0472db7cca8f40e",
     "ErrorBuffer.__init__": "9ea1b2a8897928d2",
@@ -261,13 +278,13 @@ FINGERPRINTS = {
     "Exploration.on_episode_end": "6bf65031d32947e1",
     "Exploration.on_split": "175a17efdbde8865",
     "EpsilonGreedy.epsilon": "14f180e6c73b2563",
-    "adaptive_epsilon": "a23633a5f70a7e2c",
+    "adaptive_epsilon": "5efac9ca19ae2f00",
     "AdaptiveEpsilon.epsilon": "9ba4c0e190b56a89",
-    "AdaptiveEpsilon.update": "f03d7f7a92ad4a2c",
+    "AdaptiveEpsilon.update": "5c6f2fd556d10a19",
     "AdaptiveEpsilon.on_split": "069b7bb541ea2745",
     "vdbe_epsilon": "4ed44ee07531fec3",
     "VDBE.epsilon": "9ba4c0e190b56a89",
-    "VDBE.update": "c089f8723b6d394f",
+    "VDBE.update": "711e03bc6e124029",
     "VDBE.on_split": "5af4d87122d6ac93",
     "tabu_capacity": "083948ac4f6c1898",
     "Tabu.epsilon": "1ee7eb40149dc2db",
@@ -406,9 +423,15 @@ def ineligible_reason(agent: Any, env: Any) -> str | None:
     extra = set(vars(agent)) - attributes
     if extra:
         return f"{kind.__name__} has attributes the fast loop does not know: {sorted(extra)}"
+    if agent._track_scale or agent.model is not None:
+        return "a measured reward unit or the model over the leaves (beyond the paper)"
+    if agent.q_init != agent.config.q_init:
+        return "an initial Q-bar other than TreeConfig.q_init (optimistic initialisation)"
     partition: Any = agent.partition
     if type(partition) is not partition_type:
         return f"partition {type(partition).__name__} is not {partition_type.__name__}"
+    if getattr(partition, "_grown", None) or getattr(partition, "scale", None) is not None:
+        return "a partition with unbounded dimensions or thresholds in a measured unit"
     dims = getattr(partition, "dims", None)
     if dims != 2:
         return f"{dims}-dimensional inputs (the kernel takes 2)"

@@ -10,6 +10,7 @@ test run once per epoch.
 from __future__ import annotations
 
 import logging
+import math
 from collections.abc import Callable, Sequence
 from os import PathLike
 from typing import TYPE_CHECKING, Any, Self
@@ -21,9 +22,11 @@ from agent.config import TreeConfig
 from agent.episode_stats import EpisodeStats
 from agent.exploration import Exploration, make_exploration
 from agent.inspection import LeafInfo, render_partition
+from agent.leaf_model import LeafModel
 from agent.partition import Partition
 from agent.random_stream import UniformStream
-from agent.smdp import epoch_returns, leaf_update
+from agent.scale import ReturnScale, ReturnSpread, RewardScale
+from agent.smdp import epoch_discounts, epoch_returns, leaf_update
 from agent.spaces import action_count, observation_bounds
 
 if TYPE_CHECKING:
@@ -64,6 +67,8 @@ class SMDPAgent:
     """
 
     kind = "smdp"
+    accepts_unbounded = False
+    """Whether the partition grows unbounded observation dimensions from the data."""
 
     def __init__(
         self,
@@ -74,7 +79,7 @@ class SMDPAgent:
         config: TreeConfig | None = None,
         bounds: Bounds | None = None,
     ) -> None:
-        low, high = observation_bounds(observation_space, bounds)
+        low, high = observation_bounds(observation_space, bounds, self.accepts_unbounded)
         self.n_actions = action_count(action_space)
         self.observation_space = observation_space
         self.action_space = action_space
@@ -96,8 +101,29 @@ class SMDPAgent:
         self.rng = np.random.default_rng(self.seed)
         self.uniform = UniformStream(self.rng)
         """Every draw of the exploration strategies, from :attr:`rng` in blocks."""
+        cfg = self.config
+        self.scale: ReturnScale | ReturnSpread | RewardScale
+        if cfg.scale_rule == "return_std":
+            self.scale = ReturnScale()
+        elif cfg.scale_rule == "return_iqr":
+            self.scale = ReturnSpread()
+        else:
+            self.scale = RewardScale(cfg.gamma)
+        """The reward scale measured so far (``TreeConfig.threshold_units="scale"``)."""
+        self._track_scale = cfg.threshold_units == "scale"
+        self.model: LeafModel | None = (
+            LeafModel(self.n_actions, cfg.model_window) if cfg.planning == "sweep" else None
+        )
+        """The empirical SMDP model of ``TreeConfig.planning="sweep"`` (None otherwise)."""
         self.partition: Partition = self._make_partition(low, high)
-        q0 = self.config.q_init
+        if self._track_scale:
+            if hasattr(self.partition, "scale"):
+                self.partition.scale = self.scale
+            exploration.use_scale(self.scale)
+        optimistic = exploration.initial_value(cfg.gamma)
+        q0 = cfg.q_init if optimistic is None else optimistic
+        self.q_init = q0
+        """Initial Q-bar of a new row: ``config.q_init`` or the strategy's optimistic value."""
         self.q: list[list[float]] = [[q0] * self.n_actions for _ in range(self.partition.n_ids)]
         self.visits: list[list[int]] = [[0] * self.n_actions for _ in range(self.partition.n_ids)]
         self.episodes_done = 0
@@ -197,7 +223,7 @@ class SMDPAgent:
                     held_leaves = []
                 else:
                     bootstrap = 0.0 if terminated else max(q[nxt])
-                    split = self._end_epoch(leaf, action, xs, rs, bootstrap)
+                    split = self._end_epoch(leaf, action, xs, rs, bootstrap, x, terminated)
                 if done:
                     break
                 leaf = current = leaf_of(x) if split else nxt
@@ -225,22 +251,58 @@ class SMDPAgent:
         return stats
 
     def _end_epoch(
-        self, leaf: int, action: int, xs: list[list[float]], rs: list[float], bootstrap: float
+        self,
+        leaf: int,
+        action: int,
+        xs: list[list[float]],
+        rs: list[float],
+        bootstrap: float,
+        end_x: list[float] | None = None,
+        terminated: bool = False,
     ) -> bool:
         """Eqs. (9)-(10) for one epoch, then the strategy's hooks and the partition's split test.
 
-        Returns whether ``leaf`` was split.
+        ``end_x`` is the input the epoch ended at and ``terminated`` whether it was terminal
+        (the model of ``TreeConfig.planning="sweep"`` stores them). Returns whether ``leaf`` was
+        split.
         """
         cfg = self.config
         row = self.q[leaf]
         old = row[action]
         returns = epoch_returns(rs, bootstrap, cfg.gamma)
         new, errors = leaf_update(old, returns, cfg.alpha)
+        if self._track_scale:
+            self.scale.add(rs if cfg.scale_rule == "reward_median" else returns)
+        model = self.model
+        if model is not None and end_x is not None:
+            before = max(row)
+            rewards = epoch_returns(rs, 0.0, cfg.gamma)
+            discounts = epoch_discounts(len(rs), cfg.gamma)
+            tau = len(rs)
+            end_leaf = -1 if terminated else self.partition.leaf_of(end_x)
+            model.add(
+                leaf,
+                action,
+                xs[0],
+                sum(rewards) / tau,
+                sum(discounts) / tau,
+                None if terminated else end_x,
+                end_leaf,
+            )
+            value = model.value(leaf, action, self.q)
+            if value is not None:
+                new = value + self._bonus(leaf, action)
         row[action] = new
         self.visits[leaf][action] += 1
         strategy = self.exploration
         strategy.update(leaf, action, new - old)
         strategy.on_epoch_end(leaf, action)
+        if model is not None:
+            change = abs(max(row) - before) if end_x is not None else 0.0
+            tolerance = self._in_units(cfg.sweep_tolerance)
+            if change > tolerance:
+                model.push(leaf, change)
+            model.sweep(self.q, cfg.sweep_backups, tolerance, self._bonus_function())
         if not self.partition.records_errors:
             return False
         children = self.partition.record(leaf, xs, errors)
@@ -248,6 +310,21 @@ class SMDPAgent:
             return False
         self._grow(leaf, children)
         return True
+
+    def _in_units(self, value: float) -> float:
+        """A constant of ``TreeConfig`` in reward units (``threshold_units``)."""
+        return value * self.scale.value if self._track_scale else value
+
+    def _bonus(self, leaf: int, action: int) -> float:
+        """MBIE-EB bonus ``beta / sqrt(n(leaf, action))`` of ``TreeConfig.model_bonus``."""
+        beta = self.config.model_bonus
+        if beta == 0.0 or self.model is None:
+            return 0.0
+        n = self.model.epochs.get(leaf * self.n_actions + action, 0)
+        return self._in_units(beta) / math.sqrt(n) if n else 0.0
+
+    def _bonus_function(self) -> Callable[[int, int], float] | None:
+        return self._bonus if self.config.model_bonus > 0.0 else None
 
     def _end_held_run(
         self,
@@ -276,9 +353,13 @@ class SMDPAgent:
                 end += 1
             if end < n:
                 bootstrap = max(self.q[leaves[end]])
+                end_x, end_terminal = xs[end], False
             else:
                 bootstrap = 0.0 if terminated else max(self.q[last_leaf])
-            if self._end_epoch(leaf, action, xs[start:end], rs[start:end], bootstrap):
+                end_x, end_terminal = last_x, terminated
+            if self._end_epoch(
+                leaf, action, xs[start:end], rs[start:end], bootstrap, end_x, end_terminal
+            ):
                 any_split = True
                 leaves[end:] = [leaf_of(x) for x in xs[end:]]
                 last_leaf = leaf_of(last_x)
@@ -289,14 +370,36 @@ class SMDPAgent:
         """Give the new leaves rows of Q-bar and counts (section IV.B, children of a split)."""
         cfg = self.config
         while len(self.q) < self.partition.n_ids:
-            self.q.append([cfg.q_init] * self.n_actions)
+            self.q.append([self.q_init] * self.n_actions)
             self.visits.append([0] * self.n_actions)
         for child in children:
             if cfg.inherit_q:
                 self.q[child] = list(self.q[parent])
             if not cfg.reset_counts_on_split:
                 self.visits[child] = list(self.visits[parent])
+        if self.model is not None:
+            self._refile_model(parent, children)
         self.exploration.on_split(parent, children)
+
+    def _refile_model(self, parent: int, children: tuple[int, int]) -> None:
+        """After a split, both children (and the epochs ending in them) get model values."""
+        model = self.model
+        assert model is not None
+        q = self.q
+        parent_value = max(q[parent])
+        before = {leaf: max(q[leaf]) for leaf in children}
+        for key in model.split(parent, children, self.partition.leaf_of):
+            leaf, action = divmod(key, self.n_actions)
+            if leaf not in before:
+                before[leaf] = max(q[leaf])
+            value = model.value(leaf, action, q)
+            if value is not None:
+                q[leaf][action] = value + self._bonus(leaf, action)
+        tolerance = self._in_units(self.config.sweep_tolerance)
+        for leaf, old in before.items():
+            change = abs(max(q[leaf]) - (parent_value if leaf in children else old))
+            if change > tolerance:
+                model.push(leaf, change)
 
     def predict(self, obs: Any, deterministic: bool = True) -> int:
         """The greedy action for ``obs`` (lowest index among ties); with ``deterministic=False``
@@ -376,6 +479,14 @@ class SMDPAgent:
         }
         if policy_only:
             metadata["policy_only"] = True
+        else:
+            learner: dict[str, Any] = {}
+            if self._track_scale:
+                learner["scale"] = self.scale.state()
+            if self.model is not None:
+                learner["model"] = self.model.state()
+            if learner:
+                metadata["learner"] = learner
         arrays: dict[str, Any] = {
             "q": np.asarray(self.q, dtype=np.float64),
             "visits": np.asarray(self.visits, dtype=np.int64),
@@ -435,8 +546,15 @@ class SMDPAgent:
             if saved.partition_arrays:
                 restore = type(agent.partition).from_arrays  # type: ignore[attr-defined]
                 agent.partition = restore(saved.partition_arrays, saved.partition, saved.config)
+                if agent._track_scale and hasattr(agent.partition, "scale"):
+                    agent.partition.scale = agent.scale
             strategy.load_state_dict(saved.exploration_state)
             agent.uniform.restore(saved.rng)
+            learner = saved.learner or {}
+            if "scale" in learner:
+                agent.scale.restore(learner["scale"])
+            if "model" in learner and agent.model is not None:
+                agent.model = LeafModel.from_state(agent.n_actions, learner["model"])
         except (
             TypeError,
             ValueError,

@@ -7,12 +7,19 @@ plain lists, which is several times faster than NumPy for one vector). A node is
 are stable until the leaf splits. Each leaf holds a bounded :class:`ErrorBuffer` of
 state-error pairs; when the three conditions hold the leaf splits along the dimension of eq. (12)
 at the point of eq. (13).
+
+A dimension whose declared bounds are infinite (CartPole's velocities) is "grown from the data":
+the root is unbounded there, and wherever eq. (12)'s range_i, the minimum leaf width and the
+clipping of eq. (13)'s split point need a width, the leaf's box is cut to the smallest and
+largest value that dimension has shown in any stored state-error pair so far (``seen_bounds``).
+Bounded dimensions use their declared bounds, as before.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -20,6 +27,9 @@ from numpy.typing import NDArray
 from agent.config import TreeConfig
 from agent.error_buffer import ErrorBuffer
 from agent.split_statistics import choose_split, should_split
+
+if TYPE_CHECKING:
+    from agent.scale import ReturnScale, ReturnSpread, RewardScale
 
 
 class PartitionTree:
@@ -33,7 +43,18 @@ class PartitionTree:
         self.dims = len(low)
         self.root_low = [float(v) for v in low]
         self.root_high = [float(v) for v in high]
+        self._unbounded = [
+            not (math.isfinite(lo) and math.isfinite(hi))
+            for lo, hi in zip(self.root_low, self.root_high, strict=True)
+        ]
+        self._grown = [d for d, free in enumerate(self._unbounded) if free]
+        """Dimensions whose bounds are grown from the data."""
+        self._seen_low = [math.inf] * self.dims
+        self._seen_high = [-math.inf] * self.dims
         self._root_width = np.asarray(self.root_high) - np.asarray(self.root_low)
+        self.scale: ReturnScale | ReturnSpread | RewardScale | None = None
+        """Set by the agent when ``config.threshold_units == "scale"``: the split thresholds are
+        then multiples of ``scale.value`` (the variance threshold of its square)."""
         self._dim: list[int] = [-1]
         self._threshold: list[float] = [0.0]
         self._left: list[int] = [-1]
@@ -43,6 +64,43 @@ class PartitionTree:
         self._depth: list[int] = [0]
         self._buffers: dict[int, ErrorBuffer] = {}
         self.n_leaves = 1
+        depth = config.initial_depth + (self.dims if config.presplit_each_dimension else 0)
+        if depth > 16:
+            raise ValueError(
+                f"the tree would start with 2^{depth} leaves (initial_depth "
+                f"{config.initial_depth}, presplit_each_dimension over {self.dims} dimensions); "
+                "at most 2^16"
+            )
+        self._presplit(depth)
+
+    def _presplit(self, depth: int) -> None:
+        """``TreeConfig.initial_depth``: split every leaf at its midpoint, level by level, along
+        the dimensions in turn (an unbounded dimension once, at 0)."""
+        order: list[int] = []
+        used_unbounded: set[int] = set()
+        dim = 0
+        while len(order) < depth and (len(used_unbounded) < self.dims):
+            d = dim % self.dims
+            dim += 1
+            if self._unbounded[d]:
+                if d in used_unbounded:
+                    if all(self._unbounded):
+                        break
+                    continue
+                used_unbounded.add(d)
+            order.append(d)
+            if dim > 64 * self.dims:
+                break
+        for d in order:
+            for leaf in self.leaves():
+                low, high = self._low[leaf][d], self._high[leaf][d]
+                if math.isfinite(low) and math.isfinite(high):
+                    point = 0.5 * (low + high)
+                elif low < 0.0 < high:
+                    point = 0.0
+                else:
+                    continue
+                self.split(leaf, d, point)
 
     @property
     def n_ids(self) -> int:
@@ -84,6 +142,15 @@ class PartitionTree:
         split; in ``"window"`` mode the buffer is a FIFO of the last N_th pairs, tested each epoch.
         """
         cfg = self.config
+        for d in self._grown:
+            seen_low, seen_high = self._seen_low[d], self._seen_high[d]
+            for x in xs:
+                v = x[d]
+                if v < seen_low:
+                    seen_low = v
+                if v > seen_high:
+                    seen_high = v
+            self._seen_low[d], self._seen_high[d] = seen_low, seen_high
         buf = self._buffers.get(leaf)
         if buf is None:
             buf = self._buffers[leaf] = ErrorBuffer(self.dims, cfg.split_min_samples)
@@ -91,14 +158,18 @@ class PartitionTree:
         if buf.count < cfg.split_min_samples:
             return None
         mean, variance = buf.mean_variance()
+        max_abs_mean, min_variance = cfg.split_max_abs_mean, cfg.split_min_variance
+        if self.scale is not None:
+            unit = self.scale.value
+            max_abs_mean, min_variance = max_abs_mean * unit, min_variance * unit * unit
         children = None
         if should_split(
             buf.count,
             mean,
             variance,
             min_samples=cfg.split_min_samples,
-            max_abs_mean=cfg.split_max_abs_mean,
-            min_variance=cfg.split_min_variance,
+            max_abs_mean=max_abs_mean,
+            min_variance=min_variance,
         ):
             children = self._try_split(leaf, buf)
         if children is None and cfg.error_buffer == "clear":
@@ -109,14 +180,27 @@ class PartitionTree:
         if self.n_leaves >= self.config.max_leaves:
             return None
         low, high = np.asarray(self._low[leaf]), np.asarray(self._high[leaf])
-        min_width = self._root_width * self.config.min_leaf_fraction
+        root_width = self._root_width
+        if self._grown:
+            low, high, root_width = self._grown_box(low, high)
+        min_width = root_width * self.config.min_leaf_fraction
         if not ((high - low) >= 2.0 * min_width).any():
             return None  # checked before copying the buffer: in "window" mode this runs each epoch
         inputs, errors = buf.arrays()
         ranges = high - low
         if self.config.range_normalization == "root":
-            ranges = ranges / self._root_width
-        choice = choose_split(inputs, errors, low, high, ranges, min_width, self.config.split_point)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                ranges = np.where(root_width > 0.0, ranges / root_width, 0.0)
+        choice = choose_split(
+            inputs,
+            errors,
+            low,
+            high,
+            ranges,
+            min_width,
+            self.config.split_point,
+            self.config.split_min_t,
+        )
         if choice is None:
             return None
         dim, value = choice
@@ -129,6 +213,31 @@ class PartitionTree:
                     child_buf.add(inputs[mask].tolist(), errors[mask].tolist())
                     self._buffers[child] = child_buf
         return children
+
+    def _grown_box(
+        self, low: np.ndarray, high: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """A leaf's box and the root's width with the unbounded dimensions cut to the data.
+
+        A dimension that has shown no value yet (or a single one) gets width 0, so it is not
+        eligible for a split.
+        """
+        low, high = low.copy(), high.copy()
+        root_width = self._root_width.copy()
+        for d in self._grown:
+            seen_low, seen_high = self._seen_low[d], self._seen_high[d]
+            if not seen_low < seen_high:
+                low[d] = high[d] = root_width[d] = 0.0
+                continue
+            low[d] = min(max(low[d], seen_low), seen_high)
+            high[d] = max(min(high[d], seen_high), seen_low)
+            root_width[d] = seen_high - seen_low
+        return low, high, root_width
+
+    @property
+    def seen_bounds(self) -> tuple[list[float], list[float]]:
+        """Smallest and largest value each unbounded dimension has shown (inf, -inf: none)."""
+        return list(self._seen_low), list(self._seen_high)
 
     def split(self, leaf: int, dim: int, value: float) -> tuple[int, int]:
         """Split ``leaf`` at ``x[dim] = value`` into two new leaves; returns their ids."""
@@ -202,6 +311,8 @@ class PartitionTree:
         arrays["buffer_counters"] = np.asarray([s[2] for s in states], dtype=np.float64).reshape(
             len(leaves), 4
         )
+        arrays["seen_low"] = np.asarray(self._seen_low, dtype=np.float64)
+        arrays["seen_high"] = np.asarray(self._seen_high, dtype=np.float64)
         return arrays, {"root_low": self.root_low, "root_high": self.root_high}
 
     @classmethod
@@ -210,6 +321,9 @@ class PartitionTree:
     ) -> PartitionTree:
         """Inverse of :meth:`to_arrays`."""
         tree = cls(meta["root_low"], meta["root_high"], config)
+        if "seen_low" in arrays:
+            tree._seen_low = [float(v) for v in arrays["seen_low"]]
+            tree._seen_high = [float(v) for v in arrays["seen_high"]]
         tree._dim = [int(v) for v in arrays["dim"]]
         tree._threshold = [float(v) for v in arrays["threshold"]]
         tree._left = [int(v) for v in arrays["left"]]

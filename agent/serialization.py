@@ -45,6 +45,7 @@ from gymnasium import spaces
 
 from agent.config import TreeConfig
 from agent.exploration import Exploration, Tabu, make_exploration
+from agent.spaces import UNBOUNDED_MAGNITUDE
 
 FORMAT = "bullet_maze.agent"
 VERSION = 2
@@ -84,8 +85,19 @@ MAX_GRID_CELLS = 1_000_000
 TREE_ARRAYS = ("dim", "threshold", "left", "parent", "low", "high", "depth")
 """Arrays of a tree partition that acting needs (``PartitionTree.to_arrays``)."""
 
-LEARNING_ARRAYS = ("buffer_leaf", "buffer_inputs", "buffer_errors", "buffer_counters")
-"""Arrays of a tree partition that only continued learning needs: its leaves' error buffers."""
+LEARNING_ARRAYS = (
+    "buffer_leaf",
+    "buffer_inputs",
+    "buffer_errors",
+    "buffer_counters",
+    "seen_low",
+    "seen_high",
+)
+"""Arrays of a tree partition that only continued learning needs: its leaves' error buffers and
+the range each unbounded dimension has shown (``PartitionTree.seen_bounds``)."""
+
+OPTIONAL_ARRAYS = ("seen_low", "seen_high")
+"""Tree arrays that files written before unbounded dimensions were grown do not have."""
 
 _METADATA_KEYS = {
     "format",
@@ -101,7 +113,9 @@ _METADATA_KEYS = {
     "rng",
     "partition",
 }
-_OPTIONAL_METADATA_KEYS = {"policy_only"}
+_OPTIONAL_METADATA_KEYS = {"policy_only", "learner"}
+"""``learner``: the learner's own state beyond the paper (the measured reward unit of
+``TreeConfig.threshold_units="scale"``, the model of ``planning="sweep"``), when it has any."""
 
 
 # --- settings -----------------------------------------------------------------------------
@@ -331,6 +345,8 @@ class SavedAgent:
     q: np.ndarray
     visits: np.ndarray
     policy_only: bool
+    learner: dict[str, Any] | None = None
+    """The learner's state beyond the paper (``scale``, ``model``), if the file has any."""
 
     def fail(self, message: str) -> ValueError:
         """A ``ValueError`` naming the file."""
@@ -396,7 +412,9 @@ def _read_archive(
     partition_meta = meta["partition"]
     expected = _expected_entries(kind, policy_only, fail)
     unknown = sorted(set(members) - {"metadata", "q", "visits"} - set(expected))
-    missing = sorted({"q", "visits", *expected} - set(members))
+    missing = sorted(
+        {"q", "visits", *expected} - set(members) - {f"partition.{n}" for n in OPTIONAL_ARRAYS}
+    )
     if unknown:
         raise fail(f"unknown entries {unknown} (an agent file of kind {kind!r} has no such data)")
     if missing:
@@ -409,6 +427,7 @@ def _read_archive(
         partition_arrays = {
             entry[len("partition.") :]: read(entry, *_TREE_DTYPES[entry[len("partition.") :]])
             for entry in expected
+            if entry in members
         }
         if policy_only:
             capacity = config.split_min_samples
@@ -456,6 +475,7 @@ def _read_archive(
         q=q,
         visits=visits,
         policy_only=policy_only,
+        learner=meta.get("learner"),
     )
 
 
@@ -471,6 +491,8 @@ _TREE_DTYPES: dict[str, tuple[str, int]] = {
     "buffer_inputs": ("f8", 2),
     "buffer_errors": ("f8", 2),
     "buffer_counters": ("f8", 2),
+    "seen_low": ("f8", 1),
+    "seen_high": ("f8", 1),
 }
 
 
@@ -620,8 +642,19 @@ def _check_metadata(meta: Any, fail: Callable[[str], ValueError]) -> None:
     need(
         isinstance(bounds, list)
         and len(bounds) == 2
-        and all(_numbers(b) and len(b) == dims for b in bounds),
-        f"bounds must be two lists of {dims} finite numbers",
+        and all(_numbers(b, allow_infinite=True) and len(b) == dims for b in bounds),
+        f"bounds must be two lists of {dims} numbers",
+    )
+    need(
+        all(
+            (math.isfinite(b) or (b == -math.inf and lo <= -UNBOUNDED_MAGNITUDE))
+            for b, lo in zip(bounds[0], low, strict=True)
+        )
+        and all(
+            (math.isfinite(b) or (b == math.inf and hi >= UNBOUNDED_MAGNITUDE))
+            for b, hi in zip(bounds[1], high, strict=True)
+        ),
+        "bounds are infinite where the observation space is bounded",
     )
     need(all(a < b for a, b in zip(bounds[0], bounds[1], strict=True)), "bounds have low >= high")
     need(_integer(meta["seed"]) and meta["seed"] >= 0, f"seed {meta['seed']!r} is not >= 0")
@@ -654,14 +687,26 @@ def _check_metadata(meta: Any, fail: Callable[[str], ValueError]) -> None:
     partition = meta["partition"]
     need(isinstance(partition, dict), "partition is not an object")
     need(
-        _numbers(partition.get("root_low")) and _numbers(partition.get("root_high")),
-        "partition root_low/root_high are not lists of finite numbers",
+        _numbers(partition.get("root_low"), allow_infinite=True)
+        and _numbers(partition.get("root_high"), allow_infinite=True),
+        "partition root_low/root_high are not lists of numbers",
     )
     need(
         partition["root_low"] == bounds[0] and partition["root_high"] == bounds[1],
         "partition root box differs from the bounds",
     )
     need(set(partition) <= {"root_low", "root_high", "resolution"}, "partition has unknown keys")
+    learner = meta.get("learner")
+    if learner is not None:
+        need(
+            isinstance(learner, dict) and set(learner) <= {"scale", "model"},
+            "learner must be an object with scale and/or model",
+        )
+        need(
+            all(isinstance(v, dict) for v in learner.values()),
+            "learner scale/model are not objects",
+        )
+        need(_finite_everywhere(learner), "learner holds a value that is not finite")
 
 
 def _integer(value: Any) -> bool:
@@ -713,9 +758,21 @@ def _check_tree(
     for name, array in (("low", low), ("high", high)):
         if array.shape != (n, dims):
             raise fail(f"tree entry {name!r} has shape {array.shape}, expected {(n, dims)}")
-    for name, array in (("threshold", threshold), ("low", low), ("high", high)):
-        if not np.isfinite(array).all():
+    if not np.isfinite(threshold).all():
+        raise fail("tree entry 'threshold' holds values that are not finite")
+    # A box is infinite only along a dimension the root leaves unbounded (grown from the data).
+    root_low = np.asarray(meta["root_low"], dtype=np.float64)
+    root_high = np.asarray(meta["root_high"], dtype=np.float64)
+    for name, array, edge in (("low", low, -np.inf), ("high", high, np.inf)):
+        infinite = ~np.isfinite(array)
+        allowed = (array == edge) & ~np.isfinite(root_low if edge < 0 else root_high)
+        if (infinite & ~allowed).any():
             raise fail(f"tree entry {name!r} holds values that are not finite")
+    for name in OPTIONAL_ARRAYS:
+        if name in arrays:
+            seen = arrays[name]
+            if seen.shape != (dims,) or np.isnan(seen).any():
+                raise fail(f"tree entry {name!r} must be {dims} numbers, got shape {seen.shape}")
     if ((dim < -1) | (dim >= dims)).any():
         raise fail(f"tree entry 'dim' holds a dimension outside -1..{dims - 1}")
     internal = np.flatnonzero(dim >= 0)

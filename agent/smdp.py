@@ -23,6 +23,20 @@ def epoch_returns(rewards: list[float], bootstrap: float, gamma: float) -> list[
     return out
 
 
+def epoch_discounts(tau: int, gamma: float) -> list[float]:
+    """The factor eq. (9) applies to V-bar(s') for each input: ``gamma^(tau - k)``, k = 0 .. tau-1.
+
+    With these, ``epoch_returns(rs, b, gamma)[k] == epoch_returns(rs, 0, gamma)[k] + D_k b``: the
+    split the model of ``TreeConfig.planning="sweep"`` stores (:mod:`agent.leaf_model`).
+    """
+    out = [0.0] * tau
+    d = 1.0
+    for k in range(tau - 1, -1, -1):
+        d *= gamma
+        out[k] = d
+    return out
+
+
 def leaf_update(q: float, returns: list[float], alpha: float) -> tuple[float, list[float]]:
     """Eq. (10): move Q-bar(s_t, a) towards the mean of the epoch's per-input returns.
 

@@ -1,4 +1,10 @@
-"""Checks of the spaces an agent is built for: a bounded Box observation, Discrete actions."""
+"""Checks of the spaces an agent is built for: a Box observation, Discrete actions.
+
+A dimension whose bound is infinite, or beyond :data:`UNBOUNDED_MAGNITUDE` in magnitude (some
+envs write ``float32`` max for "unbounded"), is unbounded. Agents whose partition can grow its
+bounds from the data (the tree, ``allow_unbounded=True``) get ``-inf`` / ``inf`` there; the
+others refuse it with a message that says to pass ``bounds``.
+"""
 
 from __future__ import annotations
 
@@ -7,14 +13,20 @@ from collections.abc import Sequence
 import numpy as np
 from gymnasium import spaces
 
+UNBOUNDED_MAGNITUDE = 1e30
+"""A declared bound at least this large in magnitude is read as unbounded."""
+
 
 def observation_bounds(
-    observation_space: spaces.Space, bounds: tuple[Sequence[float], Sequence[float]] | None
+    observation_space: spaces.Space,
+    bounds: tuple[Sequence[float], Sequence[float]] | None,
+    allow_unbounded: bool = False,
 ) -> tuple[list[float], list[float]]:
-    """The box the partition covers: ``bounds`` if given, else the space's own (finite) bounds.
+    """The box the partition covers: ``bounds`` if given, else the space's own bounds.
 
-    Raises TypeError for a non-Box or non-flat observation space and ValueError for infinite or
-    empty bounds, naming the offending values.
+    With ``allow_unbounded`` an unbounded dimension comes back as ``-inf`` / ``inf``; without it
+    it is a ValueError. Raises TypeError for a non-Box observation space and ValueError for a
+    non-flat one, NaN or empty bounds, naming the offending values.
     """
     if not isinstance(observation_space, spaces.Box):
         raise TypeError(
@@ -41,7 +53,11 @@ def observation_bounds(
                 f"bounds must give {dims} lows and {dims} highs, "
                 f"got {low.tolist()} and {high.tolist()}"
             )
-    if not (np.isfinite(low).all() and np.isfinite(high).all()):
+    if np.isnan(low).any() or np.isnan(high).any():
+        raise ValueError(f"{source} has NaN bounds (low={low.tolist()}, high={high.tolist()})")
+    low = np.where(low <= -UNBOUNDED_MAGNITUDE, -np.inf, low)
+    high = np.where(high >= UNBOUNDED_MAGNITUDE, np.inf, high)
+    if not allow_unbounded and not (np.isfinite(low).all() and np.isfinite(high).all()):
         raise ValueError(
             f"{source} is unbounded (low={low.tolist()}, high={high.tolist()}); "
             "pass finite bounds=(low, high) to the agent"
@@ -51,6 +67,12 @@ def observation_bounds(
             f"{source} must have low < high, got low={low.tolist()}, high={high.tolist()}"
         )
     return low.tolist(), high.tolist()
+
+
+def squash(value: float) -> float:
+    """``x / (1 + |x|)``: an unbounded input mapped onto (-1, 1), monotone, 0 at 0 (the rule of
+    the fixed-representation baselines for unbounded dimensions; it assumes inputs of order 1)."""
+    return value / (1.0 + abs(value))
 
 
 def action_count(action_space: spaces.Space) -> int:

@@ -131,14 +131,19 @@ def choose_split(
     ranges: FloatArray,
     min_width: FloatArray,
     point_rule: str = "quest",
+    min_t: float = 0.0,
 ) -> tuple[int, float] | None:
     """Split dimension by eq. (12) and split point by eq. (13) for one leaf.
 
     Inputs with a positive error form g_1, those with a negative error g_2 (a zero error joins
     neither). Dimensions too narrow to leave two children of ``min_width`` are not eligible.
     ``point_rule`` is passed to :func:`split_point`.
-    Returns ``(dimension, value)`` or None when no dimension is eligible or a group has fewer than
-    two samples.
+    ``min_t`` (beyond the paper; 0 turns it off) is a significance gate: no split unless some
+    eligible dimension's Welch t statistic, without eq. (12)'s range weight, reaches it, i.e.
+    unless the inputs with positive and negative errors lie apart in the leaf by more than the
+    noise of their positions explains.
+    Returns ``(dimension, value)`` or None when no dimension is eligible, a group has fewer than
+    two samples or the gate is not passed.
     """
     pos, neg = inputs[errors > 0.0], inputs[errors < 0.0]
     if pos.shape[0] < 2 or neg.shape[0] < 2:
@@ -146,6 +151,10 @@ def choose_split(
     eligible = (high - low) >= 2.0 * min_width
     if not eligible.any():
         return None
+    if min_t > 0.0:
+        raw = t_statistics(pos, neg, np.ones(inputs.shape[1]))
+        if not (np.where(eligible, raw, -np.inf) >= min_t).any():
+            return None
     t = t_statistics(pos, neg, ranges)
     t = np.where(eligible, t, -np.inf)
     dim = int(np.argmax(t))

@@ -17,6 +17,7 @@ class TreeAgent(SMDPAgent):
     """
 
     kind = "tree"
+    accepts_unbounded = True
     partition: PartitionTree
 
     def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:

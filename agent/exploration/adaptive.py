@@ -44,13 +44,15 @@ def adaptive_epsilon(
     c_n: float = 0.001,
     c_h: float = 0.025,
     variant: Variant = "literal",
+    unit: float = 1.0,
 ) -> float:
     """Eq. (5): the leaf's exploration rate from its counts and the last Delta-Q.
 
     With ``n = sum_a N(s, a)`` and ``h = H-bar(s)``:
     ``epsilon = (1 - h)(1 - exp(-|dQ| / n))`` if ``|dQ| / (n C_n) < C_h``, else ``1 - h``.
     ``variant="cn_exponent"`` reads the exponent as ``-|dQ| / (n C_n)`` (C_n scaling both places).
-    A leaf with no counts gets epsilon = 1.
+    A leaf with no counts gets epsilon = 1. ``unit`` (beyond the paper; 1 as printed) is the
+    reward unit |dQ| is measured in (the agent's scale with ``threshold_units="scale"``).
     """
     total = sum(counts)
     if total == 0:
@@ -61,7 +63,12 @@ def adaptive_epsilon(
             p = n / total
             h -= p * math.log(p)
     unused = 1.0 - (h / math.log(len(counts)) if len(counts) > 1 else 0.0)
-    magnitude = abs(delta_q)
+    if unit == 1.0:
+        magnitude = abs(delta_q)
+    elif unit > 0.0:
+        magnitude = abs(delta_q) / unit
+    else:  # no scale measured yet (every return so far equal): any change is large
+        magnitude = math.inf if delta_q != 0.0 else 0.0
     if magnitude / (total * c_n) < c_h:
         scale = total * c_n if variant == "cn_exponent" else total
         return unused * (1.0 - math.exp(-magnitude / scale))
@@ -107,7 +114,9 @@ class AdaptiveEpsilon(Exploration):
         if counts is None:
             counts = self._counts[leaf] = [0] * self.n_actions
         counts[action] += 1
-        self._epsilon[leaf] = adaptive_epsilon(counts, delta_q, self.c_n, self.c_h, self.variant)
+        self._epsilon[leaf] = adaptive_epsilon(
+            counts, delta_q, self.c_n, self.c_h, self.variant, self.unit()
+        )
 
     def on_split(self, parent: int, children: tuple[int, int]) -> None:
         counts = self._counts.pop(parent, None)

@@ -12,6 +12,15 @@ from __future__ import annotations
 from typing import Any, Protocol
 
 
+class RewardUnit(Protocol):
+    """Anything with a ``value`` in reward units, e.g. :class:`agent.scale.RewardScale`."""
+
+    @property
+    def value(self) -> float:
+        """The unit."""
+        ...
+
+
 class UniformSource(Protocol):
     """Anything with ``random() -> float`` uniform in [0, 1), e.g. ``numpy.random.Generator``."""
 
@@ -45,12 +54,28 @@ class Exploration:
     explored: bool = False
     """Whether the last :meth:`select` chose at random (an exploratory action): the learner may
     hold such an action across leaf boundaries (``TreeConfig.hold_exploration``)."""
+    scale: RewardUnit | None = None
+    """Set by :meth:`use_scale`: parameters in reward units are multiples of ``scale.value``."""
 
     def bind(self, n_actions: int) -> None:
         """Called once by the agent with the number of actions before any other hook."""
         if n_actions < 1:
             raise ValueError(f"{self.name}: n_actions must be >= 1, got {n_actions!r}")
         self.n_actions = n_actions
+
+    def use_scale(self, scale: RewardUnit) -> None:
+        """Read every parameter in reward units as a multiple of ``scale.value`` from now on
+        (the agent calls this when ``TreeConfig.threshold_units == "scale"``)."""
+        self.scale = scale
+
+    def unit(self) -> float:
+        """The current reward unit: ``scale.value``, or 1 without a scale."""
+        return 1.0 if self.scale is None else self.scale.value
+
+    def initial_value(self, gamma: float) -> float | None:
+        """Initial Q-bar the strategy asks for (optimistic initialisation), or None: the
+        agent's ``TreeConfig.q_init``."""
+        return None
 
     def epsilon(self, leaf: int) -> float:
         """The probability of a uniformly random action in ``leaf``."""

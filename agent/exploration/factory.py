@@ -1,7 +1,8 @@
 """Strategies by name: ``make_exploration("adaptive+tabu", c_n=0.001, initial_capacity=20)``.
 
-A name ending in ``+tabu`` wraps the base strategy in :class:`Tabu`; ``"tabu"`` alone is
-epsilon-greedy + tabu. Keyword parameters go to whichever of the two classes accepts them.
+A name ending in ``+tabu`` wraps the base strategy in :class:`Tabu` (any base composes);
+``"tabu"`` alone is epsilon-greedy + tabu. Keyword parameters go to whichever of the two classes
+accepts them.
 """
 
 from __future__ import annotations
@@ -11,15 +12,25 @@ from typing import Any
 
 from agent.exploration.adaptive import AdaptiveEpsilon
 from agent.exploration.base import Exploration
+from agent.exploration.boltzmann import Boltzmann
+from agent.exploration.count_bonus import CountBonus
+from agent.exploration.decaying_epsilon import DecayingEpsilon
 from agent.exploration.epsilon_greedy import EpsilonGreedy, Greedy
+from agent.exploration.optimistic import OptimisticInit
 from agent.exploration.tabu import Tabu
 from agent.exploration.vdbe import VDBE
+from agent.exploration.vdbe_softmax import VDBESoftmax
 
 BASE_STRATEGIES: dict[str, type[Exploration]] = {
     "epsilon-greedy": EpsilonGreedy,
     "greedy": Greedy,
     "adaptive": AdaptiveEpsilon,
     "vdbe": VDBE,
+    "boltzmann": Boltzmann,
+    "count-bonus": CountBonus,
+    "decaying-epsilon": DecayingEpsilon,
+    "vdbe-softmax": VDBESoftmax,
+    "optimistic": OptimisticInit,
 }
 STRATEGY_NAMES: tuple[str, ...] = (
     "epsilon-greedy",
@@ -31,6 +42,16 @@ STRATEGY_NAMES: tuple[str, ...] = (
     "greedy",
     "greedy+tabu",
     "epsilon-greedy+tabu",
+    "boltzmann",
+    "count-bonus",
+    "decaying-epsilon",
+    "vdbe-softmax",
+    "optimistic",
+    "boltzmann+tabu",
+    "count-bonus+tabu",
+    "decaying-epsilon+tabu",
+    "vdbe-softmax+tabu",
+    "optimistic+tabu",
 )
 
 

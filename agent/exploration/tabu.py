@@ -25,7 +25,7 @@ from __future__ import annotations
 from collections import deque
 from typing import Any, Literal
 
-from agent.exploration.base import Exploration, UniformSource, greedy_action
+from agent.exploration.base import Exploration, RewardUnit, UniformSource, greedy_action
 
 SplitPolicy = Literal["drop", "inherit"]
 AllListed = Literal["greedy", "random"]
@@ -96,6 +96,13 @@ class Tabu(Exploration):
     def bind(self, n_actions: int) -> None:
         super().bind(n_actions)
         self.base.bind(n_actions)
+
+    def use_scale(self, scale: RewardUnit) -> None:
+        super().use_scale(scale)
+        self.base.use_scale(scale)
+
+    def initial_value(self, gamma: float) -> float | None:
+        return self.base.initial_value(gamma)
 
     def epsilon(self, leaf: int) -> float:
         return self.base.epsilon(leaf)

@@ -53,8 +53,11 @@ class VDBE(Exploration):
 
     def update(self, leaf: int, action: int, delta_q: float) -> None:
         delta = self.delta if self.delta is not None else 1.0 / self.n_actions
+        sigma = self.sigma if self.scale is None else self.sigma * self.scale.value
+        if sigma <= 0.0:
+            return  # no scale measured yet: no evidence either way
         self._epsilon[leaf] = vdbe_epsilon(
-            self._epsilon.get(leaf, 1.0), delta_q, self.sigma, delta, self.form
+            self._epsilon.get(leaf, 1.0), delta_q, sigma, delta, self.form
         )
 
     def on_split(self, parent: int, children: tuple[int, int]) -> None:

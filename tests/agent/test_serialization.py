@@ -384,3 +384,45 @@ def test_random_metadata_edits_are_refused_by_name_or_harmless(
         assert [loaded.predict(x) for x in probe] == expected, path
     assert len(refusals) > 60
     assert all(str(bad) in message and "allow_pickle" not in message for message in refusals)
+
+
+@pytest.mark.parametrize("env_id", ["CartPole-v1", "MountainCar-v0"])
+def test_the_general_agent_round_trips_with_its_unit_model_and_unbounded_dimensions(
+    tmp_path: Path, env_id: str
+) -> None:
+    """The general preset saves what it learns beyond the paper (the measured reward unit, the
+    model over the leaves, the range each unbounded dimension showed) and continues bit for
+    bit; CartPole's velocities are unbounded, so its tree's boxes are infinite there."""
+    from agent import preset
+
+    env = gym.make(env_id)
+    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
+    agent.learn(env, 30, reset_seed=0)
+    path = agent.save(tmp_path / "agent.npz")
+    loaded = TreeAgent.load(path)
+    assert loaded.scale.value == agent.scale.value
+    assert loaded.model is not None
+    assert loaded.model.state() == agent.model.state()  # type: ignore[union-attr]
+    assert loaded.partition.seen_bounds == agent.partition.seen_bounds
+    later = agent.learn(env, 30, reset_seed=5)
+    assert loaded.learn(env, 30, reset_seed=5) == later
+    assert loaded.q == agent.q
+    assert TreeAgent.load(agent.save(tmp_path / "p.npz", policy_only=True)).q == agent.q
+
+
+def test_infinite_bounds_where_the_space_is_bounded_are_refused(tmp_path: Path) -> None:
+    from agent import preset
+
+    env = gym.make("CartPole-v1")
+    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
+    agent.learn(env, 3, reset_seed=0)
+    path = agent.save(tmp_path / "agent.npz")
+    with np.load(path, allow_pickle=False) as data:
+        arrays = {k: data[k] for k in data.files}
+    meta = json.loads(arrays["metadata"].tobytes().decode("utf-8"))
+    meta["bounds"][0][0] = float("-inf")  # the cart's position is bounded (+-4.8)
+    meta["partition"]["root_low"][0] = float("-inf")
+    arrays["metadata"] = np.frombuffer(json.dumps(meta).encode("utf-8"), dtype=np.uint8)
+    np.savez(tmp_path / "bad.npz", **arrays)
+    with pytest.raises(ValueError, match=r"bad\.npz: metadata bounds are infinite where"):
+        TreeAgent.load(tmp_path / "bad.npz")

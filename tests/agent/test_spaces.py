@@ -22,10 +22,13 @@ def test_non_discrete_actions() -> None:
         TreeAgent(BOX, spaces.Box(-1.0, 1.0, shape=(1,)))
 
 
-def test_unbounded_observation_needs_bounds() -> None:
+def test_unbounded_observation_needs_bounds_on_a_grid() -> None:
     unbounded = spaces.Box(-np.inf, np.inf, shape=(2,))
     with pytest.raises(ValueError, match=r"unbounded.*bounds="):
-        TreeAgent(unbounded, ACTIONS)
+        GridAgent(unbounded, ACTIONS)
+    huge = spaces.Box(-np.finfo(np.float32).max, np.finfo(np.float32).max, shape=(2,))
+    with pytest.raises(ValueError, match=r"unbounded.*bounds="):
+        GridAgent(huge, ACTIONS)
     agent = TreeAgent(unbounded, ACTIONS, bounds=([-1.0, -2.0], [1.0, 2.0]))
     assert agent.leaf_info(0).low == (-1.0, -2.0)
     with pytest.raises(ValueError, match="2 lows and 2 highs"):
@@ -62,8 +65,8 @@ def test_defaults_are_table_one() -> None:
 
 
 def test_unknown_strategy_and_bad_arguments() -> None:
-    with pytest.raises(ValueError, match=r"'boltzmann'.*adaptive\+tabu"):
-        TreeAgent(BOX, ACTIONS, "boltzmann")
+    with pytest.raises(ValueError, match=r"'softmaxx'.*adaptive\+tabu"):
+        TreeAgent(BOX, ACTIONS, "softmaxx")
     with pytest.raises(TypeError, match="exploration"):
         TreeAgent(BOX, ACTIONS, 3)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="resolution"):

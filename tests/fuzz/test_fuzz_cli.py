@@ -69,7 +69,7 @@ def _cases() -> list[tuple[str, list[str], list[str]]]:
         ("--seed", train, [*INTEGERS, *NEGATIVE, "4294967296"]),
         ("--time-budget", train, ["", "soon", "-1", "nan", "inf", "1e30"]),
         ("--strategy", train, [*TEXT, "nope"]),
-        ("--exploration", train, [*TEXT, "boltzmann", "os:system"]),
+        ("--exploration", train, [*TEXT, "boltzman", "os:system"]),
         (
             "--param",
             [*train, "--exploration", "adaptive"],

@@ -1,0 +1,259 @@
+"""An empirical SMDP model over the leaves, and prioritized sweeping through it (beyond the paper).
+
+Eq. (10) moves Q-bar(leaf, a) a step alpha towards one epoch's target, so a value found at the
+goal travels back one epoch per visit. With ``TreeConfig(planning="sweep")`` the learner also
+keeps, for every (leaf, action), the last ``model_window`` epochs that held the action there:
+each as the mean over the epoch's inputs of the rewards' discounted sum (eq. 9 without its
+bootstrap), the mean discount ``gamma^(tau - k)`` that eq. (9) applies to V-bar(s'), and the
+state the epoch ended in. Q-bar(leaf, a) is then the average of those epochs' eq. (8) targets
+under the *current* values,
+
+    Q-bar(l, a) = (1/m) sum_e [ R_e + D_e V-bar(l'_e) ]      (V-bar = 0 after a terminal state),
+
+and a change of V-bar(l) is pushed back to every (leaf, action) whose stored epochs end in l,
+largest change first (prioritized sweeping, Moore and Atkeson 1993), up to ``sweep_backups``
+backups per epoch. It is Dyna over the tree with the model's expectation instead of sampled
+replays. Each epoch also remembers its first input, so that a split hands every stored epoch to
+the child that holds where it began, and re-points the epochs that ended in the split leaf to
+the child that holds where they ended: after a split both children have values of their own at
+once (value propagation after a split).
+
+Keys are ``leaf * n_actions + action``. The state is plain data (:meth:`state`).
+"""
+
+from __future__ import annotations
+
+import heapq
+from collections import deque
+from collections.abc import Callable
+from typing import Any
+
+Record = tuple[list[float], float, float, list[float] | None, int]
+"""(first input, mean reward part R, mean discount D, end state or None if terminal, end leaf)."""
+_TERMINAL = -1
+
+
+class LeafModel:
+    """Per-(leaf, action) windows of epochs, their aggregates, and a sweep queue."""
+
+    def __init__(self, n_actions: int, window: int) -> None:
+        if window < 1:
+            raise ValueError(f"model window must be >= 1, got {window!r}")
+        self.n_actions = n_actions
+        self.window = window
+        self._records: dict[int, deque[Record]] = {}
+        self._reward: dict[int, float] = {}
+        self._discount: dict[int, dict[int, float]] = {}
+        self._preds: dict[int, dict[int, int]] = {}
+        """end leaf -> key -> how many of the key's stored epochs end in that leaf."""
+        self.epochs: dict[int, int] = {}
+        """Epochs ever recorded per key (a split hands each child the epochs it receives)."""
+        self._queue: list[tuple[float, int]] = []
+        self._priority: dict[int, float] = {}
+
+    def count(self, leaf: int, action: int) -> int:
+        """Epochs in the window of (leaf, action)."""
+        records = self._records.get(leaf * self.n_actions + action)
+        return 0 if records is None else len(records)
+
+    def add(
+        self,
+        leaf: int,
+        action: int,
+        first: list[float],
+        reward: float,
+        discount: float,
+        end: list[float] | None,
+        end_leaf: int,
+    ) -> None:
+        """Store one epoch; ``end=None`` (and any ``end_leaf``) marks a terminal state."""
+        key = leaf * self.n_actions + action
+        records = self._records.get(key)
+        if records is None:
+            records = self._records[key] = deque()
+        target = _TERMINAL if end is None else end_leaf
+        records.append((first, reward, discount, end, target))
+        self._link(target, key, 1)
+        if len(records) > self.window:
+            old = records.popleft()
+            self._link(old[4], key, -1)
+        self.epochs[key] = self.epochs.get(key, 0) + 1
+        self._aggregate(key)
+
+    def value(self, leaf: int, action: int, q: list[list[float]]) -> float | None:
+        """The model's Q-bar(leaf, action) under the values ``q`` (None without epochs)."""
+        key = leaf * self.n_actions + action
+        records = self._records.get(key)
+        if not records:
+            return None
+        total = self._reward[key]
+        for end_leaf, discount in self._discount[key].items():
+            total += discount * max(q[end_leaf])
+        return total / len(records)
+
+    def push(self, leaf: int, priority: float) -> None:
+        """Ask for the predecessors of ``leaf`` to be backed up (largest priority first)."""
+        if priority > self._priority.get(leaf, 0.0):
+            self._priority[leaf] = priority
+            heapq.heappush(self._queue, (-priority, leaf))
+
+    def sweep(
+        self,
+        q: list[list[float]],
+        budget: int,
+        tolerance: float,
+        bonus: Callable[[int, int], float] | None = None,
+    ) -> int:
+        """Prioritized sweeping: up to ``budget`` backups of the predecessors of queued leaves.
+
+        A backed-up (leaf, action) whose leaf's V-bar moves by more than ``tolerance`` queues
+        that leaf in turn. ``bonus(leaf, action)`` is added to each backup (MBIE-EB). Returns
+        the number of backups made.
+        """
+        done = 0
+        n_actions = self.n_actions
+        while self._queue and done < budget:
+            negative, leaf = heapq.heappop(self._queue)
+            if self._priority.get(leaf) != -negative:
+                continue  # a stale entry: the leaf was queued again with a larger priority
+            del self._priority[leaf]
+            for key in list(self._preds.get(leaf, ())):
+                pred, action = divmod(key, n_actions)
+                row = q[pred]
+                before = max(row)
+                value = self.value(pred, action, q)
+                if value is None:
+                    continue
+                if bonus is not None:
+                    value += bonus(pred, action)
+                row[action] = value
+                done += 1
+                change = abs(max(row) - before)
+                if change > tolerance:
+                    self.push(pred, change)
+        return done
+
+    def split(
+        self, parent: int, children: tuple[int, int], leaf_of: Callable[[list[float]], int]
+    ) -> list[int]:
+        """Re-file the epochs of ``parent`` and those ending in it; returns the keys changed."""
+        n_actions = self.n_actions
+        changed: set[int] = set()
+        for action in range(n_actions):
+            key = parent * n_actions + action
+            records = self._records.pop(key, None)
+            epochs = self.epochs.pop(key, 0)
+            self._reward.pop(key, None)
+            self._discount.pop(key, None)
+            if records is None:
+                continue
+            moved = {child: 0 for child in children}
+            for record in records:
+                self._link(record[4], key, -1)
+                child = leaf_of(record[0])
+                if child not in moved:
+                    continue  # outside both children (a data-grown box): dropped
+                moved[child] += 1
+                child_key = child * n_actions + action
+                bucket = self._records.get(child_key)
+                if bucket is None:
+                    bucket = self._records[child_key] = deque()
+                bucket.append(record)
+                self._link(record[4], child_key, 1)
+                changed.add(child_key)
+            for child, received in moved.items():
+                if received:
+                    share = received * epochs // len(records)
+                    self.epochs[child * n_actions + action] = max(received, share)
+        for key in list(self._preds.pop(parent, {})):
+            records = self._records[key]
+            refiled: deque[Record] = deque()
+            for first, reward, discount, end, end_leaf in records:
+                if end_leaf == parent and end is not None:
+                    end_leaf = leaf_of(end)
+                    self._link(end_leaf, key, 1)
+                refiled.append((first, reward, discount, end, end_leaf))
+            self._records[key] = refiled
+            changed.add(key)
+        for key in changed:
+            self._aggregate(key)
+        self._priority.pop(parent, None)
+        return sorted(changed)
+
+    def _link(self, end_leaf: int, key: int, change: int) -> None:
+        if end_leaf == _TERMINAL:
+            return
+        links = self._preds.get(end_leaf)
+        if links is None:
+            links = self._preds[end_leaf] = {}
+        count = links.get(key, 0) + change
+        if count > 0:
+            links[key] = count
+        else:
+            links.pop(key, None)
+            if not links:
+                del self._preds[end_leaf]
+
+    def _aggregate(self, key: int) -> None:
+        """Recompute the key's sums from its window (exact: no running sums that drift)."""
+        reward = 0.0
+        discount: dict[int, float] = {}
+        for _, r, d, end, end_leaf in self._records[key]:
+            reward += r
+            if end is not None:
+                discount[end_leaf] = discount.get(end_leaf, 0.0) + d
+        self._reward[key] = reward
+        self._discount[key] = discount
+
+    def state(self) -> dict[str, Any]:
+        """JSON-ready state: every stored epoch, the epoch counts, the predecessor links and the
+        sweep queue, each in its order (a sweep visits predecessors in the links' order and
+        pops the heap as it lies, so a restored model continues bit for bit)."""
+        return {
+            "window": self.window,
+            "records": [
+                [key, [[list(f), r, d, None if e is None else list(e), t] for f, r, d, e, t in rs]]
+                for key, rs in self._records.items()
+            ],
+            "epochs": [[k, n] for k, n in self.epochs.items()],
+            "preds": [
+                [leaf, [[k, n] for k, n in links.items()]] for leaf, links in self._preds.items()
+            ],
+            "heap": [[p, leaf] for p, leaf in self._queue],
+            "priority": [[leaf, p] for leaf, p in self._priority.items()],
+        }
+
+    @classmethod
+    def from_state(cls, n_actions: int, state: dict[str, Any]) -> LeafModel:
+        """Inverse of :meth:`state`."""
+        model = cls(n_actions, int(state["window"]))
+        for key, records in state["records"]:
+            bucket = model._records[int(key)] = deque()
+            for first, reward, discount, end, end_leaf in records:
+                record: Record = (
+                    [float(v) for v in first],
+                    float(reward),
+                    float(discount),
+                    None if end is None else [float(v) for v in end],
+                    int(end_leaf),
+                )
+                bucket.append(record)
+            model._aggregate(int(key))
+        model.epochs = {int(k): int(n) for k, n in state["epochs"]}
+        model._preds = {
+            int(leaf): {int(k): int(n) for k, n in links} for leaf, links in state["preds"]
+        }
+        expected: dict[int, dict[int, int]] = {}
+        for key, bucket in model._records.items():
+            for record in bucket:
+                if record[4] != _TERMINAL:
+                    links = expected.setdefault(record[4], {})
+                    links[key] = links.get(key, 0) + 1
+        if {leaf: dict(sorted(v.items())) for leaf, v in model._preds.items()} != {
+            leaf: dict(sorted(v.items())) for leaf, v in expected.items()
+        }:
+            raise ValueError("the model's predecessor links do not match its epochs")
+        model._queue = [(float(p), int(leaf)) for p, leaf in state["heap"]]
+        heapq.heapify(model._queue)
+        model._priority = {int(leaf): float(p) for leaf, p in state["priority"]}
+        return model

@@ -1,0 +1,101 @@
+"""Named agents: the paper's method as printed, as the project reads it, and the general learner.
+
+A preset is a :class:`TreeConfig` and an exploration strategy (name and parameters), so that an
+experiment file can spell it out field by field (``[[strategy]] config = {...}``) and a script
+can build it by name::
+
+    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
+
+* ``"paper"``: Table I with the five reading choices of docs/paper-notes.md ("What makes every
+  seed learn"): ``TreeConfig()`` and ``"adaptive+tabu"``, the proposed method exactly as
+  ``paper_fig4`` runs it.
+* ``"paper-literal"``: the paper's text read literally (no held exploration, a split restarts
+  the adaptive epsilon, the tabu list shrinks by one per success, its deviations are not
+  held, aspiration when every action is listed): ``paper_fig4``'s ``adaptive+tabu-literal``.
+* ``"general"``: the project's best agent, one set of defaults for every task (issue 9): the
+  proposed method's strategy, with every threshold in a measured unit, an SMDP model over the
+  leaves with prioritized sweeping, a root split once in every dimension, and the split test's
+  settings chosen on the development cases (docs/paper-notes.md, "Beyond the paper: a learner
+  that is fast everywhere").
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from gymnasium import spaces
+
+from agent.config import TreeConfig
+from agent.exploration import Exploration, make_exploration
+from agent.tree_agent import TreeAgent
+
+
+@dataclass(frozen=True)
+class Preset:
+    """A tree agent's configuration and exploration strategy, by name."""
+
+    name: str
+    description: str
+    config: TreeConfig
+    exploration: str
+    exploration_params: Mapping[str, Any] = field(default_factory=dict)
+
+    def make_exploration(self) -> Exploration:
+        """A fresh strategy object (strategies hold per-agent state)."""
+        return make_exploration(self.exploration, **self.exploration_params)
+
+    def agent(
+        self,
+        observation_space: spaces.Space,
+        action_space: spaces.Space,
+        seed: int = 0,
+        bounds: tuple[Sequence[float], Sequence[float]] | None = None,
+    ) -> TreeAgent:
+        """A new :class:`TreeAgent` with this preset."""
+        return TreeAgent(
+            observation_space, action_space, self.make_exploration(), seed, self.config, bounds
+        )
+
+
+PAPER = Preset(
+    "paper",
+    "Table I and the project's five reading choices (the proposed method of paper_fig4)",
+    TreeConfig(),
+    "adaptive+tabu",
+)
+PAPER_LITERAL = Preset(
+    "paper-literal",
+    "Table I, the paper's text read literally (paper_fig4's adaptive+tabu-literal)",
+    TreeConfig(hold_exploration=False),
+    "adaptive+tabu",
+    {
+        "inherit_on_split": False,
+        "shrink_every": 1,
+        "deviation_explores": False,
+        "all_listed": "greedy",
+    },
+)
+GENERAL = Preset(
+    "general",
+    "one set of defaults for every task: measured units, a model over the leaves, sweeping",
+    TreeConfig(
+        threshold_units="scale",
+        scale_rule="reward_median",
+        split_min_samples=100,
+        split_max_abs_mean=0.5,
+        split_min_variance=0.0002,
+        planning="sweep",
+        presplit_each_dimension=True,
+    ),
+    "adaptive+tabu",
+)
+PRESETS: dict[str, Preset] = {p.name: p for p in (PAPER, PAPER_LITERAL, GENERAL)}
+
+
+def preset(name: str) -> Preset:
+    """The preset called ``name`` (ValueError listing the names otherwise)."""
+    if name not in PRESETS:
+        raise ValueError(f"unknown preset {name!r}; choose one of {sorted(PRESETS)}")
+    return PRESETS[name]

@@ -1,0 +1,102 @@
+"""The SMDP model over the leaves and prioritized sweeping (TreeConfig.planning="sweep")."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from gymnasium import spaces
+
+from agent import TreeAgent, TreeConfig
+from agent.leaf_model import LeafModel
+from agent.smdp import epoch_discounts, epoch_returns
+
+
+def chain() -> tuple[LeafModel, list[list[float]]]:
+    """Leaf 0 leads to leaf 1, which ends the episode (one action)."""
+    model = LeafModel(n_actions=1, window=2)
+    q = [[0.0], [0.0], [0.0], [0.0]]
+    model.add(1, 0, [0.8], reward=1.0, discount=0.9, end=None, end_leaf=1)
+    model.add(0, 0, [0.2], reward=0.5, discount=0.5, end=[0.85], end_leaf=1)
+    return model, q
+
+
+def test_epoch_discounts_split_the_return() -> None:
+    rs, b, gamma = [1.0, -2.0, 0.5], 3.0, 0.9
+    full = epoch_returns(rs, b, gamma)
+    part = epoch_returns(rs, 0.0, gamma)
+    d = epoch_discounts(3, gamma)
+    assert d == pytest.approx([0.729, 0.81, 0.9])
+    assert full == pytest.approx([p + k * b for p, k in zip(part, d, strict=True)])
+
+
+def test_model_value_by_hand() -> None:
+    model, q = chain()
+    assert model.value(1, 0, q) == 1.0  # terminal: R only
+    q[1][0] = 1.0
+    assert model.value(0, 0, q) == 0.5 + 0.5 * 1.0
+    assert model.value(2, 0, q) is None
+    model.add(0, 0, [0.3], reward=-1.0, discount=0.25, end=[0.1], end_leaf=0)
+    # mean of (0.5 + 0.5 * 1) and (-1 + 0.25 * V(0) = -1 + 0.25 * 0)
+    assert model.value(0, 0, q) == pytest.approx((1.0 - 1.0) / 2)
+    model.add(0, 0, [0.3], reward=2.0, discount=0.0, end=[0.1], end_leaf=0)
+    assert model.count(0, 0) == 2  # window 2: the first epoch was forgotten
+    assert model.value(0, 0, q) == pytest.approx((-1.0 + 2.0) / 2)
+    assert model.epochs[0] == 3
+
+
+def test_sweep_pushes_a_change_to_the_predecessors() -> None:
+    model, q = chain()
+    q[1][0] = 3.0
+    model.push(1, 3.0)
+    assert model.sweep(q, budget=10, tolerance=1e-9) == 1
+    assert q[0][0] == 0.5 + 0.5 * 3.0
+    assert model.sweep(q, budget=10, tolerance=1e-9) == 0  # leaf 0 has no predecessors
+
+
+def test_split_refiles_epochs_by_where_they_began_and_ended() -> None:
+    model, q = chain()
+    changed = model.split(1, (2, 3), lambda x: 2 if x[0] < 0.82 else 3)
+    # (1, 0)'s epoch began at 0.8: child 2; (0, 0)'s epoch ended at 0.85: child 3
+    assert changed == [0, 2]
+    assert model.count(2, 0) == 1
+    assert model.count(3, 0) == 0
+    assert model.count(1, 0) == 0
+    q[3][0] = 10.0
+    assert model.value(0, 0, q) == 0.5 + 0.5 * 10.0
+    model.push(3, 1.0)
+    model.sweep(q, budget=5, tolerance=0.0)
+    assert q[0][0] == 5.5
+    state = json.loads(json.dumps(model.state()))
+    again = LeafModel.from_state(1, state)
+    assert again.value(0, 0, q) == model.value(0, 0, q)
+    assert again.epochs == model.epochs
+
+
+def test_planning_agent_learns_the_mean_target_at_once() -> None:
+    class Three:
+        observation_space = spaces.Box(0.0, 1.0, shape=(1,))
+        action_space = spaces.Discrete(2)
+
+        def reset(self, seed: int | None = None) -> tuple[np.ndarray, dict]:
+            self.t = 0
+            return np.array([0.5]), {}
+
+        def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict]:
+            self.t += 1
+            return np.array([0.5]), 1.0, self.t == 3, False, {}
+
+    env = Three()
+    agent = TreeAgent(
+        env.observation_space,
+        env.action_space,
+        "greedy",
+        config=TreeConfig(alpha=0.5, gamma=0.5, planning="sweep"),
+    )
+    agent.learn(env, 1)
+    acted = int(np.argmax(agent.visits[0]))
+    # eq. (10) would give 0.5 * mean(1.75, 1.5, 1); the model gives the mean itself
+    assert agent.q[0][acted] == pytest.approx((1.75 + 1.5 + 1.0) / 3)
+    assert agent.model is not None
+    assert agent.model.count(0, acted) == 1

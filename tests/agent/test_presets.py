@@ -1,0 +1,60 @@
+"""The named agents: the paper's presets are exactly what paper_fig4 runs."""
+
+from __future__ import annotations
+
+import tomllib
+
+import pytest
+from gymnasium import spaces
+
+from agent import PRESETS, TreeConfig, preset
+from experiments import EXPERIMENT_DIR
+
+BOX = spaces.Box(0.0, 1.0, shape=(2,))
+
+
+def fig4_strategy(name: str) -> dict:
+    data = tomllib.loads((EXPERIMENT_DIR / "paper_fig4.toml").read_text())
+    return next(s for s in data["strategy"] if s["name"] == name)
+
+
+def test_paper_presets_are_paper_fig4s_strategies() -> None:
+    paper, literal = preset("paper"), preset("paper-literal")
+    assert paper.config == TreeConfig()
+    assert paper.exploration == fig4_strategy("adaptive+tabu")["exploration"]
+    spec = fig4_strategy("adaptive+tabu-literal")
+    assert literal.exploration == spec["exploration"]
+    assert literal.config == TreeConfig(**spec["config"])
+    expected = {k: v for k, v in spec["exploration_params"].items() if k not in ("c_n", "c_h")}
+    assert dict(literal.exploration_params) == expected
+
+
+def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
+    general = preset("general").config
+    changed = {k for k, v in general.to_dict().items() if v != getattr(TreeConfig(), k)}
+    beyond = {"threshold_units", "scale_rule", "planning", "model_window", "sweep_backups"}
+    table_one = {"split_min_samples", "split_max_abs_mean", "split_min_variance"}
+    others = {"initial_depth", "presplit_each_dimension", "model_bonus", "sweep_tolerance"}
+    assert changed <= beyond | table_one | others
+    assert general.threshold_units == "scale"
+
+
+@pytest.mark.parametrize("name", sorted(PRESETS))
+def test_each_preset_builds_fresh_agents(name: str) -> None:
+    one = preset(name).agent(BOX, spaces.Discrete(4), seed=1)
+    two = preset(name).agent(BOX, spaces.Discrete(4), seed=1)
+    assert one.exploration is not two.exploration
+    assert one.config == preset(name).config
+
+
+def test_unknown_preset_lists_the_names() -> None:
+    with pytest.raises(ValueError, match=r"'fastest'.*general"):
+        preset("fastest")
+
+
+def test_general_paper_experiment_spells_out_the_general_preset() -> None:
+    data = tomllib.loads((EXPERIMENT_DIR / "general_paper.toml").read_text())
+    spec = next(s for s in data["strategy"] if s["name"] == "general")
+    general = preset("general")
+    assert spec["exploration"] == general.exploration
+    assert TreeConfig(**{**data["agent"], **spec["config"]}) == general.config

@@ -1,0 +1,102 @@
+"""Scale-free thresholds: the measured units, and invariance to the reward's scale."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+from agent import TreeAgent, TreeConfig
+from agent.scale import EXACT_VALUES, ReturnScale, RewardScale
+
+
+def test_reward_scale_is_the_median_magnitude_over_one_minus_gamma() -> None:
+    s = RewardScale(0.99)
+    assert s.value == 0.0
+    s.add([0.0, 0.0])
+    assert s.value == 0.0  # zeros are not counted
+    s.add([-0.01, -0.01, -1.0, 5.0])  # magnitudes 0.01, 0.01, 1, 5: lower median 0.01
+    assert s.value == pytest.approx(1.0)
+    s.add([-1.0, -1.0, -1.0])
+    assert s.value == pytest.approx(100.0)
+    again = RewardScale(0.5)
+    again.restore(s.state())
+    assert again.value == s.value
+    assert RewardScale(1.0).gamma == 1.0
+
+
+def test_reward_scale_bins_continuous_rewards() -> None:
+    rewards = np.random.default_rng(0).normal(size=2 * EXACT_VALUES).tolist()
+    s = RewardScale(0.0)
+    s.add(rewards)
+    median = float(np.sort(np.abs(rewards))[(len(rewards) + 1) // 2 - 1])
+    assert s.value == pytest.approx(median, rel=0.05)
+    doubled = RewardScale(0.0)
+    doubled.add([4.0 * r for r in rewards])
+    assert doubled.value == 4.0 * s.value  # homogeneous under powers of two
+
+
+def test_return_scale_is_the_standard_deviation() -> None:
+    s = ReturnScale()
+    s.add([1.0, 3.0])
+    s.add([5.0])
+    assert s.value == pytest.approx(np.std([1.0, 3.0, 5.0]))
+    copy = ReturnScale()
+    copy.restore(s.state())
+    assert copy.value == s.value
+
+
+def run(
+    make_corridor: Callable[..., Any], factor: float, rule: str, episodes: int = 12
+) -> tuple[TreeAgent, list[int], list[Any]]:
+    actions: list[int] = []
+
+    class Record(gym.Wrapper):
+        def step(self, action: int) -> Any:
+            actions.append(int(action))
+            return self.env.step(action)
+
+    env = Record(gym.wrappers.TransformReward(make_corridor(), lambda r: factor * r))
+    config = TreeConfig(
+        threshold_units="scale",
+        scale_rule=rule,  # type: ignore[arg-type]
+        split_min_samples=40,
+        split_min_variance=0.01,
+        planning="sweep",
+        model_bonus=0.01,
+    )
+    agent = TreeAgent(env.observation_space, env.action_space, "adaptive+tabu", 3, config)
+    history = agent.learn(env, episodes, reset_seed=5)
+    return agent, actions, history
+
+
+@pytest.mark.parametrize("rule", ["return_std", "reward_median"])
+@pytest.mark.parametrize("factor", [4.0, 0.25, 100.0])
+def test_same_tree_and_actions_whatever_the_reward_scale(
+    make_corridor: Callable[..., Any], rule: str, factor: float
+) -> None:
+    base, base_actions, base_history = run(make_corridor, 1.0, rule)
+    scaled, actions, history = run(make_corridor, factor, rule)
+    assert base.n_leaves > 3  # the tree did split
+    assert actions == base_actions
+    assert [s.steps for s in history] == [s.steps for s in base_history]
+    assert [base.partition.leaf_bounds(v) for v in base.partition.leaves()] == [
+        scaled.partition.leaf_bounds(v) for v in scaled.partition.leaves()
+    ]
+    assert scaled.scale.value == pytest.approx(factor * base.scale.value)
+    assert np.asarray(scaled.q) == pytest.approx(factor * np.asarray(base.q))
+
+
+def test_reward_units_are_not_invariant(make_corridor: Callable[..., Any]) -> None:
+    # the paper's thresholds are in reward units: a scaled task grows another tree
+    def leaves(factor: float) -> int:
+        env = gym.wrappers.TransformReward(make_corridor(), lambda r: factor * r)
+        config = TreeConfig(split_min_samples=40, split_min_variance=0.01)
+        agent = TreeAgent(env.observation_space, env.action_space, "adaptive+tabu", 3, config)
+        agent.learn(env, 12, reset_seed=5)
+        return agent.n_leaves
+
+    assert leaves(1.0) != leaves(100.0)
