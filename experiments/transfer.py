@@ -29,10 +29,9 @@ import hashlib
 import json
 import math
 import re
-import time
 import tomllib
 from collections.abc import Callable, Collection, Iterator, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -42,8 +41,17 @@ from experiments import config as config_module
 from experiments import factory, fingerprint, runner, store
 from experiments.backends import Backend, SerialBackend
 from experiments.config import MODES, ConfigError, EnvSpec
-from experiments.evaluation import evaluate
 from experiments.lock import FolderBusyError, FolderLock
+from experiments.transfer_cell import (
+    Cell,
+    CellResult,
+    Condition,
+    TransferAgent,
+    cell_inputs,
+    cell_seed,
+    evaluate_cell,
+    safe_name,
+)
 
 CELL_DIR = "cells"
 SPEC_FILE = "transfer.toml"
@@ -87,70 +95,6 @@ class TransferSpec:
     max_episode_steps: int | None = None
     """Episode cap of every cell (None: each agent's training cap)."""
     source: str = "<options>"
-
-
-@dataclass(frozen=True)
-class TransferAgent:
-    """A saved agent with what it was trained in."""
-
-    key: str
-    """File-name safe and unique: names its folder of cells."""
-    path: Path
-    sha256: str
-    env: EnvSpec
-    """Its training environment."""
-    seed: int
-    """The run seed it was trained with."""
-    group: str
-    """Its training recipe, the unit the report aggregates over (strategy, robot, mode,
-    perturbations)."""
-    layout: str
-    """The layout's fingerprint (:func:`experiments.fingerprint.layout_fingerprint`)."""
-    observation_dims: int
-    n_actions: int
-
-
-@dataclass(frozen=True)
-class Condition:
-    """One evaluation condition of an agent."""
-
-    robot: str
-    mode: str
-    level: str
-
-    @property
-    def name(self) -> str:
-        """``<robot>__<mode>__<level>`` (the robot's file stem for a path)."""
-        return f"{_safe(Path(self.robot).stem)}__{self.mode}__{self.level}"
-
-
-@dataclass(frozen=True)
-class Cell:
-    """One agent in one condition: the task a worker computes."""
-
-    agent: TransferAgent
-    condition: Condition
-    env: EnvSpec
-    episodes: int
-    seed: int
-
-    @property
-    def name(self) -> str:
-        """``<agent>/<robot>__<mode>__<level>``."""
-        return f"{self.agent.key}/{self.condition.name}"
-
-
-@dataclass(frozen=True)
-class CellResult:
-    """What a worker returns for one cell."""
-
-    name: str
-    rows: tuple[store.EvalRow, ...]
-    optimal_steps: float
-    wall_time_s: float
-    env_steps: int
-    projected: bool
-    inputs: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -456,20 +400,10 @@ def training_group(strategy: str, env: EnvSpec) -> str:
 
 
 def _safe(text: str) -> str:
-    return _SAFE.sub("_", text)[:150] or "agent"
+    return safe_name(text)
 
 
 # --- the cells ----------------------------------------------------------------------------
-
-
-def cell_seed(run_seed: int, condition: Condition, layout: str) -> int:
-    """The seed of a cell's first reset: a child of the agent's run seed keyed by the
-    condition (``SeedSequence`` spawn key ``(3, ...)``; children 0-2 are the run's training
-    seeds), the same whatever else is evaluated."""
-    text = f"{condition.robot}|{condition.mode}|{condition.level}|{layout}"
-    words = np.frombuffer(hashlib.sha256(text.encode("utf-8")).digest()[:8], dtype=np.uint32)
-    sequence = np.random.SeedSequence(run_seed, spawn_key=(3, *(int(w) for w in words)))
-    return int(sequence.generate_state(1, dtype=np.uint32)[0])
 
 
 def condition_env(agent: TransferAgent, condition: Condition, cap: int | None) -> EnvSpec:
@@ -561,59 +495,6 @@ def _applies(agent: TransferAgent, spec: EnvSpec) -> str | None:
         env.close()
 
 
-def cell_inputs(cell: Cell, env_prints: Mapping[str, Any] | None = None) -> dict[str, Any]:
-    """Every input of a cell, fingerprinted."""
-    settings = {
-        "episodes": cell.episodes,
-        "seed": cell.seed,
-        "run_seed": cell.agent.seed,
-        "condition": dataclasses.asdict(cell.condition),
-        "env": dataclasses.asdict(cell.env),
-    }
-    return {
-        "task": fingerprint.task_name(evaluate_cell),
-        "agent": cell.agent.sha256,
-        "config": fingerprint.normalized(settings),
-        **(env_prints if env_prints is not None else fingerprint.env_inputs(cell.env)),
-        "code": fingerprint.code_fingerprint(evaluate_cell),
-    }
-
-
-def evaluate_cell(cell: Cell) -> CellResult:
-    """The task of one cell (picklable, for the backends): the agent loaded, its greedy
-    episodes in the condition's environment, and the inputs this worker actually used."""
-    raw = cell.agent.path.read_bytes()
-    agent = factory.load_agent(cell.agent.path)
-    env = factory.make_env(cell.env)
-    try:
-        used = fingerprint.env_inputs(cell.env, layout=getattr(env.unwrapped, "layout", None))
-        inputs = cell_inputs(cell, used)
-        inputs["agent"] = hashlib.sha256(raw).hexdigest()
-        dims = agent.observation_space.shape[0]
-        given = int(np.prod(env.observation_space.shape or ()))
-        projected = given > dims
-        played = factory.ProjectObservation(env, dims) if projected else env
-        optimal = factory.optimal_steps(env)
-        start = time.perf_counter()
-        result = evaluate(played, agent, cell.episodes, seed=cell.seed)
-        wall = time.perf_counter() - start
-    finally:
-        env.close()
-    rows = tuple(
-        (i + 1, e.steps, e.episode_return, e.success, e.truncated, e.collisions)
-        for i, e in enumerate(result.episodes)
-    )
-    return CellResult(
-        cell.name,
-        rows,
-        optimal,
-        wall,
-        int(sum(e.steps for e in result.episodes)),
-        projected,
-        inputs,
-    )
-
-
 # --- storing and checking cells -----------------------------------------------------------
 
 
@@ -701,10 +582,9 @@ def _read_cell(
         raise ValueError(f"{meta_path}: differs from its own recorded hash (edited or damaged)")
     if meta.get("name") != cell.name:
         raise ValueError(f"{meta_path}: names cell {meta.get('name')!r}, not {cell.name!r}")
-    if meta.get("episodes") != cell.episodes:
-        raise ValueError(
-            f"{meta_path}: {meta.get('episodes')!r} episodes, the transfer has {cell.episodes}"
-        )
+    episodes = meta.get("episodes")
+    if isinstance(episodes, bool) or not isinstance(episodes, int) or episodes < 1:
+        raise ValueError(f"{meta_path}: episodes is {episodes!r}")
     if not isinstance(meta.get("inputs"), dict):
         raise ValueError(f"{meta_path}: no input fingerprints")
     optimal = meta.get("optimal_steps")
@@ -713,14 +593,14 @@ def _read_cell(
     if not csv_path.is_file():
         raise ValueError(f"{csv_path}: missing (its sidecar exists)")
     size = csv_path.stat().st_size
-    if size != meta.get("data_bytes") or size > store.MAX_ROW_BYTES * (cell.episodes + 1):
+    if size != meta.get("data_bytes") or size > store.MAX_ROW_BYTES * (episodes + 1):
         raise ValueError(f"{csv_path}: differs from its sidecar ({size} bytes; edited or cut)")
     raw = csv_path.read_bytes()
     if hashlib.sha256(raw).hexdigest() != meta.get("data_sha256"):
         raise ValueError(f"{csv_path}: differs from its sidecar (SHA-256 mismatch)")
     columns = store.parse_rows(raw, str(csv_path), cell.env.max_episode_steps, store.EVAL_COLUMNS)
-    if len(columns["steps"]) != cell.episodes:
-        raise ValueError(f"{csv_path}: {len(columns['steps'])} rows, expected {cell.episodes}")
+    if len(columns["steps"]) != episodes:
+        raise ValueError(f"{csv_path}: {len(columns['steps'])} rows, its sidecar says {episodes}")
     return meta, columns
 
 
