@@ -598,7 +598,11 @@ def _read_cell(
     raw = csv_path.read_bytes()
     if hashlib.sha256(raw).hexdigest() != meta.get("data_sha256"):
         raise ValueError(f"{csv_path}: differs from its sidecar (SHA-256 mismatch)")
-    columns = store.parse_rows(raw, str(csv_path), cell.env.max_episode_steps, store.EVAL_COLUMNS)
+    recorded_env = meta["inputs"].get("config", {}).get("env", {})
+    cap = recorded_env.get("max_episode_steps") if isinstance(recorded_env, dict) else None
+    if isinstance(cap, bool) or not isinstance(cap, int) or cap < 1:
+        raise ValueError(f"{meta_path}: records no episode cap")
+    columns = store.parse_rows(raw, str(csv_path), cap, store.EVAL_COLUMNS)
     if len(columns["steps"]) != episodes:
         raise ValueError(f"{csv_path}: {len(columns['steps'])} rows, its sidecar says {episodes}")
     return meta, columns
