@@ -348,6 +348,14 @@ def _add_transfer_parser(sub: Any) -> None:
         "--report-only", action="store_true", help="compute nothing; report the finished cells"
     )
     transfer.add_argument(
+        "--traces",
+        type=_at_most(24),
+        default=0,
+        metavar="N",
+        help="also draw N failing episodes (failures.png): the first of each training recipe "
+        "and robot in dynamic mode at the moderate level, replayed (default: 0)",
+    )
+    transfer.add_argument(
         "--accept-code-change",
         action="store_true",
         help="count finished cells whose only difference is the code version",

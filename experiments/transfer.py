@@ -800,15 +800,24 @@ class Transfer:
                 on_result(result)
         return computed
 
-    def report(self) -> Any:
-        """Write the report of the finished cells (``ConfigError`` if none)."""
+    def report(self, traces: int = 0) -> Any:
+        """Write the report of the finished cells (``ConfigError`` if none); with ``traces``,
+        also ``failures.png``: that many failing episodes replayed and drawn (the first of
+        each recipe and robot in dynamic mode at the moderate level)."""
         from experiments.transfer_report import write_transfer_report
 
         state = self.status()
         refuse_mixing(state, self.out)
         if not state.finished:
             raise ConfigError(f"{self.out}: no finished cell (run the transfer first)")
-        return write_transfer_report(self, state)
+        failures = None
+        if traces:
+            from experiments.transfer_traces import draw_failures, failing_cells
+
+            picks = failing_cells(state, limit=traces)
+            if picks:
+                failures = draw_failures(picks, self.out / "failures.png", state)
+        return write_transfer_report(self, state, failures)
 
 
 def refuse_mixing(state: TransferState, out: Path) -> None:

@@ -167,7 +167,9 @@ def summarize_cells(rows: Sequence[CellRow], seed: int = 0) -> list[SummaryRow]:
     ]
 
 
-def write_transfer_report(transfer: Transfer, state: TransferState) -> TransferReport:
+def write_transfer_report(
+    transfer: Transfer, state: TransferState, failures: Path | None = None
+) -> TransferReport:
     """Write ``cells.csv``, ``summary.csv``, the heatmaps and ``report.md`` into the folder."""
     out = transfer.out
     rows = cell_rows(state)
@@ -211,7 +213,7 @@ def write_transfer_report(transfer: Transfer, state: TransferState) -> TransferR
     )
     figures = tuple(
         heatmaps(summary, metric, out / f"{metric}.png") for metric in ("success", "steps_ratio")
-    )
+    ) + ((failures,) if failures is not None else ())
     skipped: dict[tuple[str, str], str] = {}
     for item in state.skipped:
         skipped.setdefault((item.agent.group, item.condition.name), item.reason)

@@ -71,7 +71,8 @@ def test_the_disc_trains_in_physics_with_and_without_randomisation(tmp_path: Pat
     assert not runner.inspect_folder(config, tmp_path / "a").pending
     physical = {k.split("/")[-1]: v for k, v in first.items() if "/physical/" in k}
     randomised = {k.split("/")[-1]: v for k, v in first.items() if "/randomised/" in k}
-    assert physical.keys() == randomised.keys() and physical != randomised  # the draws matter
+    assert physical.keys() == randomised.keys()
+    assert physical != randomised
     runner.run_experiment(config, tmp_path / "b")  # again, without the report
     again = {
         str(p.relative_to(tmp_path / "b")): p.read_bytes()

@@ -17,7 +17,7 @@ from experiments import config as config_module
 from experiments import runner, store
 from experiments.backends import ProcessBackend, SerialBackend
 from experiments.config import ConfigError, parse_config
-from experiments.transfer import Transfer, cell_paths, parse_spec
+from experiments.transfer import Transfer, parse_spec
 from experiments.transfer_cell import Condition, cell_seed
 
 TRAIN = {
@@ -101,7 +101,8 @@ def test_end_to_end_files_report_and_resume(trained: Path, tmp_path: Path):
     assert "| grid disc kinematic | open | disc | dynamic | moderate | 2 |" in text
     assert "racecar__dynamic__none" in text
     train_rows = [r for r in report.cells if r.level == "train"]
-    assert len(train_rows) == 2 and all(r.gap == 0.0 for r in train_rows)
+    assert len(train_rows) == 2
+    assert all(r.gap == 0.0 for r in train_rows)
     for row in report.cells:
         assert row.gap == pytest.approx(row.success_rate - row.train_success_rate)
     before = _files(out)
@@ -150,7 +151,8 @@ def test_the_numbers_do_not_depend_on_the_worker_count(trained: Path, tmp_path: 
     Transfer(spec, tmp_path / "serial").run(SerialBackend())
     Transfer(spec, tmp_path / "two").run(ProcessBackend(2))
     serial, two = _files(tmp_path / "serial"), _files(tmp_path / "two")
-    assert serial == two and len(serial) == 4
+    assert serial == two
+    assert len(serial) == 4
 
 
 def test_cell_seeds_are_per_agent_and_condition():
@@ -163,7 +165,8 @@ def test_cell_seeds_are_per_agent_and_condition():
         cell_seed(1, Condition("disc", "dynamic", "strong"), "L"),
         cell_seed(1, here, "M"),
     }
-    assert cell_seed(1, here, "L") not in others and len(others) == 5
+    assert cell_seed(1, here, "L") not in others
+    assert len(others) == 5
 
 
 def test_a_layout_filter_keeps_only_its_agents(trained: Path, tmp_path: Path):
@@ -190,9 +193,10 @@ def test_a_layout_filter_keeps_only_its_agents(trained: Path, tmp_path: Path):
 def test_bad_condition_names_are_named(key: str, value: Any, named: str):
     data = copy.deepcopy(SPEC)
     data["conditions"][key] = value
-    with pytest.raises(ConfigError, match="tiny_transfer.toml: \\[conditions\\]") as error:
+    with pytest.raises(ConfigError, match=r"tiny_transfer.toml: \[conditions\]") as error:
         parse_spec(data, "tiny_transfer.toml")
-    assert named in str(error.value) and key in str(error.value)
+    assert named in str(error.value)
+    assert key in str(error.value)
 
 
 @pytest.mark.parametrize(
@@ -256,11 +260,35 @@ def test_the_cli_runs_and_resumes(trained: Path, tmp_path: Path, capsys):
     argv += ["--backend", "serial", "--no-progress"]
     assert run.main(argv) == 0
     first = capsys.readouterr().out
-    assert "4 cells" in first and "computed 4 cells" in first
+    assert "4 cells" in first
+    assert "computed 4 cells" in first
     assert run.main(argv) == 0
     second = capsys.readouterr().out
-    assert "4 already done" in second and "computed" not in second
+    assert "4 already done" in second
+    assert "computed" not in second
     summary = (tmp_path / "t" / "summary.csv").read_text().splitlines()
     assert len(summary) == 1 + 2  # the training condition and kinematic/none (the same env)
     values = np.array([float(line.split(",")[6]) for line in summary[1:]])
     assert ((values >= 0) & (values <= 1)).all()
+
+
+def test_failing_episodes_are_replayed_exactly_and_drawn(trained: Path, tmp_path: Path):
+    from experiments.transfer_traces import failing_cells, replay
+
+    out = tmp_path / "transfer"
+    job = Transfer(_spec([str(trained)]), out)
+    job.run()
+    state = job.status()
+    for cell in state.finished[:4]:
+        stored = state.checks[cell.name].columns
+        assert stored is not None
+        for episode in (1, 2):
+            trace, _ = replay(cell, episode)
+            assert len(trace.positions) - 1 == stored["steps"][episode - 1]
+            assert trace.success == bool(stored["success"][episode - 1])
+            assert trace.collisions.size == stored["collisions"][episode - 1]
+    picks = failing_cells(state, limit=2)
+    assert picks, "the 3-episode agents fail somewhere at the moderate level"
+    report = job.report(traces=2)
+    assert (out / "failures.png").is_file()
+    assert "failures.png" in report.path.read_text()
