@@ -211,8 +211,14 @@ def write_transfer_report(
             ],
         ),
     )
+    missing = [
+        (Path(item.condition.robot).stem, item.condition.mode)
+        for item in state.skipped
+        if item.condition.level != TRAIN_LEVEL
+    ]
     figures = tuple(
-        heatmaps(summary, metric, out / f"{metric}.png") for metric in ("success", "steps_ratio")
+        heatmaps(summary, metric, out / f"{metric}.png", missing)
+        for metric in ("success", "steps_ratio")
     ) + ((failures,) if failures is not None else ())
     skipped: dict[tuple[str, str], str] = {}
     for item in state.skipped:
@@ -223,9 +229,15 @@ def write_transfer_report(
     return TransferReport(path, tuple(rows), tuple(summary), figures, skipped_rows)
 
 
-def heatmaps(summary: Sequence[SummaryRow], metric: str, path: Path) -> Path:
+def heatmaps(
+    summary: Sequence[SummaryRow],
+    metric: str,
+    path: Path,
+    not_applicable: Sequence[tuple[str, str]] = (),
+) -> Path:
     """One panel per training recipe: rows robot / mode, columns layout / level, each cell the
-    mean over agents of ``metric`` (``success`` or ``steps_ratio``), written in the cell."""
+    mean over agents of ``metric`` (``success`` or ``steps_ratio``), written in the cell;
+    ``not_applicable`` (robot, mode) pairs get a row of ``n/a``."""
     from matplotlib.figure import Figure
 
     from experiments.plots import save
@@ -233,9 +245,10 @@ def heatmaps(summary: Sequence[SummaryRow], metric: str, path: Path) -> Path:
     shown = [s for s in summary if s.level != TRAIN_LEVEL]
     groups = list(dict.fromkeys(s.group for s in shown))
     rows = list(dict.fromkeys(f"{s.robot} / {s.mode}" for s in shown))
+    rows += [f"{r} / {m}" for r, m in dict.fromkeys(not_applicable) if f"{r} / {m}" not in rows]
     columns = list(dict.fromkeys(f"{s.layout} / {s.level}" for s in shown))
     figure = Figure(
-        figsize=(1.0 + 0.85 * len(columns), 0.9 + (0.45 * len(rows) + 0.6) * len(groups))
+        figsize=(max(6.0, 2.5 + 0.75 * len(columns)), 0.9 + (0.45 * len(rows) + 0.6) * len(groups))
     )
     axes_list = figure.subplots(max(1, len(groups)), 1, squeeze=False)[:, 0]
     vmax = 1.0 if metric == "success" else 4.0
