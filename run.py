@@ -7,6 +7,7 @@ summary and a results folder (per-episode CSV, learning curve, learned partition
     python run.py train [--strategy NAME] [--seed N] ...    one agent, saved with its CSV
     python run.py experiment CONFIG [--runs N] ...          strategies x runs, with a report
     python run.py evaluate AGENT [--mode dynamic --robot husky]
+    python run.py transfer [CONFIG] [--agents PATH...] ... agents x robots x modes x levels
     python run.py render AGENT                              a GIF of one greedy episode
     python run.py layouts MAZE... | --suite NAME            layouts and shortest paths (PNG)
 
@@ -288,8 +289,78 @@ def build_parser() -> argparse.ArgumentParser:
     )
     _add_config_source(render)
     _add_env_options(render)
+    _add_transfer_parser(sub)
     _add_layouts_parser(sub)
     return parser
+
+
+def _add_transfer_parser(sub: Any) -> None:
+    transfer = sub.add_parser(
+        "transfer",
+        help="evaluate saved agents in a grid of robots x modes x layouts x perturbation levels",
+        description="Evaluate every agent (an agent.npz, a train folder, or an experiment "
+        "folder whose runs saved their agents) greedily in every condition of the grid "
+        "that applies to it (its own layout; every robot, mode and perturbation level; and "
+        "its training condition), in parallel, each finished cell stored and verified (an "
+        "interrupted transfer resumes); then write report.md, cells.csv, summary.csv, "
+        "success.png and steps_ratio.png. Options replace the file's values.",
+    )
+    transfer.add_argument(
+        "config",
+        metavar="CONFIG",
+        nargs="?",
+        help="transfer TOML: a path or a name in experiments/ (transfer_study); optional "
+        "when --agents is given",
+    )
+    transfer.add_argument(
+        "--agents", nargs="+", metavar="PATH", help="agent files or folders (replace the file's)"
+    )
+    for key, what in (
+        ("robots", "robot names or robot files (disc, husky, racecar, rover)"),
+        ("modes", "modes (kinematic, dynamic)"),
+        ("layouts", "layouts whose agents are evaluated (default: every agent's own)"),
+        ("levels", "perturbation levels (none, moderate, strong)"),
+    ):
+        transfer.add_argument(
+            f"--{key}", type=_names, metavar="NAME[,NAME...]", help=f"comma-separated {what}"
+        )
+    transfer.add_argument(
+        "--episodes",
+        type=_at_most(MAX_EVALUATION_EPISODES),
+        metavar="N",
+        help="greedy episodes per agent and condition (default: the file's, else 10)",
+    )
+    transfer.add_argument(
+        "--max-episode-steps",
+        type=_positive,
+        metavar="N",
+        help="episode cap of every cell (default: the file's, else each agent's training cap)",
+    )
+    transfer.add_argument(
+        "--workers",
+        type=_at_most(MAX_WORKERS),
+        metavar="N",
+        help=f"parallel cells (default: all cores, here {default_workers()})",
+    )
+    transfer.add_argument("--backend", choices=BACKENDS, default="process", help="as experiment")
+    transfer.add_argument("--address", metavar="ADDRESS", help="Ray cluster to join")
+    transfer.add_argument(
+        "--report-only", action="store_true", help="compute nothing; report the finished cells"
+    )
+    transfer.add_argument(
+        "--traces",
+        type=_at_most(24),
+        default=0,
+        metavar="N",
+        help="also draw N failing episodes (failures.png): the first of each training recipe "
+        "and robot in dynamic mode at the moderate level, replayed (default: 0)",
+    )
+    transfer.add_argument(
+        "--accept-code-change",
+        action="store_true",
+        help="count finished cells whose only difference is the code version",
+    )
+    _add_output_options(transfer, "results/<name>/")
 
 
 def _add_allow_env(parser: argparse.ArgumentParser) -> None:
@@ -659,6 +730,75 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_transfer(args: argparse.Namespace) -> int:
+    """Agents x conditions, evaluated, stored and reported."""
+    from tqdm import tqdm
+
+    from experiments.transfer import Transfer
+
+    if args.config is None and not args.agents:
+        raise ConfigError("give a transfer file (CONFIG) or the agents (--agents)")
+    job = Transfer.from_options(
+        args.config,
+        agents=args.agents,
+        robots=args.robots,
+        modes=args.modes,
+        layouts=args.layouts,
+        levels=args.levels,
+        episodes=args.episodes,
+        max_episode_steps=args.max_episode_steps,
+        out=args.out,
+        allowed_env_ids=_allowed(args),
+        accept_code_change=args.accept_code_change,
+        results_dir=RESULTS_DIR,
+    )
+    if not args.report_only:
+        workers = args.workers or default_workers()
+        backend = make_backend(args.backend, workers, args.address)
+        bars: list[Any] = []
+
+        def on_start(state: Any) -> None:
+            done = len(state.finished)
+            print(
+                f"{job.spec.name}: {len(job.agents)} agents, {len(state.cells)} cells "
+                f"({len(state.skipped)} conditions do not apply), {job.spec.episodes} episodes "
+                f"each; {done} already done; backend {args.backend}, {backend.workers} "
+                f"workers; results in {job.out}/"
+            )
+            bars.append(
+                tqdm(
+                    total=len(state.cells),
+                    initial=done,
+                    unit="cell",
+                    disable=not args.progress,
+                    dynamic_ncols=True,
+                )
+            )
+
+        def on_result(result: Any) -> None:
+            bars[0].update(1)
+
+        start = time.perf_counter()
+        try:
+            computed = job.run(backend, on_start=on_start, on_result=on_result)
+        finally:
+            for bar in bars:
+                bar.close()
+        if computed:
+            steps = sum(r.env_steps for r in computed)
+            busy = sum(r.wall_time_s for r in computed)
+            print(
+                f"computed {len(computed)} cells in {time.perf_counter() - start:.1f} s; "
+                f"{steps / max(busy, 1e-9):,.0f} steps/s per worker"
+            )
+    report = job.report()
+    print(
+        f"report: {report.path} ({len(report.summary)} rows; figures: "
+        f"{', '.join(f.name for f in report.figures)})"
+    )
+    return 0
+
+
 def cmd_render(args: argparse.Namespace) -> int:
     """A GIF of one greedy episode over the partition."""
     playback = _playback(args)
@@ -711,6 +851,7 @@ COMMANDS = {
     "experiment": cmd_experiment,
     "evaluate": cmd_evaluate,
     "render": cmd_render,
+    "transfer": cmd_transfer,
     "layouts": cmd_layouts,
 }
 

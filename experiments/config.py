@@ -220,6 +220,10 @@ class ExperimentConfig:
     eval_episodes: int = 0
     """Greedy episodes after each run's training (0: none), the first reset seeded from the
     run's seed; stored beside the run as ``<run>.eval.csv``."""
+    save_agents: bool = False
+    """Store each run's trained agent (its policy, ``agent.save(policy_only=True)``) as
+    ``<run>.agent.npz`` beside its CSV, its hash in the sidecar and verified like the CSV: the
+    agents ``run.py transfer`` evaluates."""
     tasks: tuple[TaskSpec, ...] = ()
     """The tasks (empty: the one environment :attr:`env`)."""
     suite: str | None = None
@@ -508,6 +512,7 @@ def parse_config(
         convergence_tolerance=float(tolerance),
         time_budget_s=None if budget is None else float(budget),
         eval_episodes=reader.bounded(meta, "experiment", "eval_episodes", 0, 0, MAX_EVAL_EPISODES),
+        save_agents=reader.value(meta, "experiment", "save_agents", bool, False),
         tasks=tasks,
         suite=suite,
         splits=splits,
@@ -666,6 +671,8 @@ def to_dict(config: ExperimentConfig) -> dict[str, Any]:
         meta["time_budget_s"] = config.time_budget_s
     if config.eval_episodes:
         meta["eval_episodes"] = config.eval_episodes
+    if config.save_agents:
+        meta["save_agents"] = True
     strategies = [strategy_to_dict(spec) for spec in config.strategies]
     data: dict[str, Any] = {"experiment": meta}
     if config.suite is not None:

@@ -148,6 +148,8 @@ def resolved_config(
     }
     if experiment.eval_episodes:
         settings["eval_episodes"] = experiment.eval_episodes
+    if experiment.save_agents:
+        settings["save_agents"] = True
     return settings
 
 

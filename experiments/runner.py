@@ -131,6 +131,7 @@ def inspect_folder(
             spec.env.max_episode_steps,
             expected(spec),
             config.eval_episodes,
+            config.save_agents,
         )
         for spec in specs
     }

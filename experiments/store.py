@@ -73,6 +73,8 @@ class RunResult:
     """The task the run belongs to (None in an experiment with one environment)."""
     evaluation: tuple[EvalRow, ...] = ()
     """Greedy episodes after training (empty: no evaluation)."""
+    agent_file: bytes = b""
+    """The trained agent's policy file (``.npz`` bytes; empty: not saved)."""
 
     @property
     def name(self) -> str:
@@ -148,6 +150,24 @@ def atomic_write_text(path: Path, text: str) -> None:
         raise
 
 
+def atomic_write_bytes(path: Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` so that readers see the old file or the whole new one."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    descriptor, temporary = tempfile.mkstemp(
+        dir=path.parent, prefix=f".{path.name}.", suffix=".tmp"
+    )
+    try:
+        with os.fdopen(descriptor, "wb") as handle:
+            handle.write(data)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.chmod(temporary, 0o644)
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
 def format_rows(rows: Iterable[Sequence[Any]], columns: Sequence[str] = COLUMNS) -> str:
     """CSV text with a fixed number format: integers as such, floats by ``repr`` (exact)."""
     buffer = io.StringIO()
@@ -178,6 +198,29 @@ def eval_path(run_dir: Path, name: str) -> Path:
     return run_dir / f"{name}.eval.csv"
 
 
+def agent_path(run_dir: Path, name: str) -> Path:
+    """The saved agent (policy) of run ``name`` (``[experiment] save_agents``)."""
+    return run_dir / f"{name}.agent.npz"
+
+
+def verified_agent(run_dir: Path, name: str, meta: Mapping[str, Any]) -> Path:
+    """The saved agent of a verified run, checked against its sidecar's size and SHA-256
+    (``ValueError`` naming the file otherwise)."""
+    path = agent_path(run_dir, name)
+    for key, kind in (("agent_bytes", int), ("agent_sha256", str)):
+        value = meta.get(key)
+        if isinstance(value, bool) or not isinstance(value, kind):
+            raise ValueError(f"{run_dir / name}.json: records no saved agent ({key} is {value!r})")
+    if not path.is_file():
+        raise ValueError(f"{path}: missing (its sidecar records it)")
+    size = path.stat().st_size
+    if size != meta["agent_bytes"]:
+        raise ValueError(f"{path}: differs from its sidecar ({size} bytes; edited, cut or damaged)")
+    if hashlib.sha256(path.read_bytes()).hexdigest() != meta["agent_sha256"]:
+        raise ValueError(f"{path}: differs from its sidecar (SHA-256 mismatch; edited or damaged)")
+    return path
+
+
 def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None = None) -> Path:
     """Store a finished run: its CSV, then the sidecar that vouches for it (the sidecar marks
     it finished). ``inputs`` are its fingerprints (default: those the result carries)."""
@@ -187,7 +230,7 @@ def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None
     meta = {
         key: value
         for key, value in asdict(result).items()
-        if key not in ("rows", "inputs", "evaluation", "task")
+        if key not in ("rows", "inputs", "evaluation", "task", "agent_file")
     }
     evaluation = format_rows(result.evaluation, EVAL_COLUMNS) if result.evaluation else None
     if result.task is not None:
@@ -197,6 +240,11 @@ def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None
             evaluation_episodes=len(result.evaluation),
             evaluation_sha256=hashlib.sha256(evaluation.encode("utf-8")).hexdigest(),
             evaluation_bytes=len(evaluation.encode("utf-8")),
+        )
+    if result.agent_file:
+        meta.update(
+            agent_sha256=hashlib.sha256(result.agent_file).hexdigest(),
+            agent_bytes=len(result.agent_file),
         )
     meta.update(
         format=SIDECAR_FORMAT,
@@ -211,6 +259,8 @@ def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None
     meta["sidecar_sha256"] = fingerprint.digest(meta)  # of everything else in it
     if evaluation is not None:
         atomic_write_text(eval_path(run_dir, result.name), evaluation)
+    if result.agent_file:
+        atomic_write_bytes(agent_path(run_dir, result.name), result.agent_file)
     atomic_write_text(csv_path, text)
     atomic_write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True) + "\n")
     return csv_path
@@ -218,7 +268,7 @@ def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None
 
 def remove_run(run_dir: Path, name: str) -> None:
     """Delete a run's files (to recompute it)."""
-    for path in (*run_paths(run_dir, name), eval_path(run_dir, name)):
+    for path in (*run_paths(run_dir, name), eval_path(run_dir, name), agent_path(run_dir, name)):
         path.unlink(missing_ok=True)
 
 
@@ -229,15 +279,18 @@ def check_run(
     cap: int,
     expected_inputs: Mapping[str, Any] | None = None,
     eval_episodes: int = 0,
+    saved_agent: bool = False,
 ) -> RunCheck:
     """Verify run ``name`` against its sidecar, its expected ``episodes`` and episode ``cap``,
-    its greedy evaluation of ``eval_episodes`` episodes (if any), and (if given) the inputs it
-    should have been computed from."""
+    its greedy evaluation of ``eval_episodes`` episodes (if any), its saved agent (if
+    ``saved_agent``), and (if given) the inputs it should have been computed from."""
     csv_path, meta_path = run_paths(run_dir, name)
     if not csv_path.exists() and not meta_path.exists():
         return RunCheck(name, "missing")
     try:
         data = _read_verified(run_dir, name, episodes, cap, eval_episodes)
+        if saved_agent:
+            verified_agent(run_dir, name, data.meta)
     except ValueError as error:
         return RunCheck(name, "invalid", str(error))
     if expected_inputs is None:

@@ -9,9 +9,11 @@ from __future__ import annotations
 import math
 import os
 import resource
+import tempfile
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from experiments import factory, fingerprint
@@ -114,6 +116,13 @@ def evaluation_rows(env: gym.Env, agent: Any, episodes: int, seed: int) -> tuple
     )
 
 
+def policy_bytes(agent: Any) -> bytes:
+    """The agent's policy file (``agent.save(policy_only=True)``) as bytes, for the runner to
+    store beside the run."""
+    with tempfile.TemporaryDirectory(prefix="bullet_maze_agent_") as folder:
+        return Path(agent.save(Path(folder) / "agent.npz", policy_only=True)).read_bytes()
+
+
 def train_run(spec: RunSpec) -> RunResult:
     """The task of one run: a fresh environment and agent seeded from the run's seed, trained,
     then (if the experiment asks) evaluated greedily from the run's evaluation seed.
@@ -141,9 +150,11 @@ def train_run(spec: RunSpec) -> RunResult:
             else ()
         )
         optimal = factory.optimal_steps(env)
+        agent_file = policy_bytes(agent) if experiment.save_agents else b""
     finally:
         env.close()
     return RunResult(
+        agent_file=agent_file,
         task=spec.task,
         evaluation=evaluation,
         strategy=strategy.name,
