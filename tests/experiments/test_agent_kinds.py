@@ -220,3 +220,34 @@ def test_every_kind_runs_in_an_experiment_and_repeats_bit_for_bit(tmp_path: Path
         outputs.append({p.name: p.read_bytes() for p in sorted((out / "runs").glob("*.csv"))})
     assert len(outputs[0]) == 3
     assert outputs[0] == outputs[1]
+
+
+ISSUE_9_STRATEGIES = {
+    "general",
+    "tile",
+    "adaptive-q",
+    "boltzmann",
+    "count-bonus",
+    "decaying-epsilon",
+    "vdbe-softmax",
+    "optimistic",
+}
+
+
+@pytest.mark.parametrize("name", ["maze_suite", "classic_control"])
+def test_the_shipped_comparisons_hold_every_agent_of_issue_9(name: str):
+    config = load_config(name)
+    assert {s.name for s in config.strategies} >= ISSUE_9_STRATEGIES
+    assert config.strategy("general").preset == "general"
+    kinds = {s.agent for s in config.strategies}
+    assert {"tree", "tile", "adaptive-q"} <= kinds
+    explorations = {s.exploration for s in config.strategies if s.agent == "tree"}
+    assert {"boltzmann", "count-bonus", "decaying-epsilon", "vdbe-softmax", "optimistic"} <= (
+        explorations
+    )
+    task = config.tasks[-1]  # every agent builds for a task's environment
+    env = factory.make_env(task.env)
+    try:
+        factory.check_agents(config, env, task.env)
+    finally:
+        env.close()
