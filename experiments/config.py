@@ -39,6 +39,7 @@ import tomli_w
 from gymnasium.envs.registration import load_env_creator, registry
 
 import bullet_maze
+from agent.presets import preset as named_preset
 from agent.serialization import (
     MAX_GRID_CELLS,
     check_value,
@@ -46,11 +47,16 @@ from agent.serialization import (
     exploration_from_data,
 )
 from bullet_maze.params import MAX_EPISODE_STEPS, MODES
+from experiments.agent_kinds import (
+    AGENT_KINDS,
+    PRESET_NAMES,
+    check_agent_params,
+    is_fixed,
+    preset_config,
+)
 
 EXPERIMENT_DIR = Path(__file__).resolve().parent
 """Where the shipped experiment files live (``experiments/*.toml``)."""
-
-AGENT_KINDS = ("tree", "grid")
 
 MAX_CONFIG_BYTES = 1 << 20
 """Largest experiment file (1 MiB)."""
@@ -151,15 +157,25 @@ class StrategySpec:
     name: str
     """Unique, file-name safe label; runs are named ``<name>__<seed>``."""
     agent: str = "tree"
-    """``"tree"`` (the paper's adaptive tree, ``TreeAgent``) or ``"grid"`` (``GridAgent``)."""
+    """``"tree"`` (the paper's adaptive tree, ``TreeAgent``), ``"grid"`` (``GridAgent``),
+    ``"tile"`` (``TileCodingAgent``) or ``"adaptive-q"`` (``AdaptiveQAgent``)."""
     exploration: str = "adaptive+tabu"
-    """Exploration strategy name understood by ``agent.make_exploration``."""
+    """Exploration strategy name understood by ``agent.make_exploration`` (tree and grid; with a
+    preset, the preset's unless given)."""
     exploration_params: dict[str, Any] = field(default_factory=dict)
-    """Keyword arguments of the exploration strategy (for example ``epsilon``)."""
+    """Keyword arguments of the exploration strategy (for example ``epsilon``); with a preset,
+    the preset's with these over them."""
     config: dict[str, Any] = field(default_factory=dict)
-    """Agent config fields for this strategy only, over the experiment's ``[agent]`` table."""
+    """Agent config fields for this strategy only, over the experiment's ``[agent]`` table, or
+    over the preset's fields when it names one."""
     resolution: int | tuple[int, ...] | None = None
     """Cells per dimension of the uniform grid (``agent = "grid"`` only)."""
+    preset: str | None = None
+    """A named agent of ``agent.presets`` (``"paper"``, ``"paper-literal"``, ``"general"``;
+    tree and grid): its ``TreeConfig`` replaces the experiment's ``[agent]`` table."""
+    agent_params: dict[str, Any] = field(default_factory=dict)
+    """Constructor arguments of ``agent = "tile"`` or ``"adaptive-q"`` (``tilings``, ``alpha``,
+    ``bonus_scale``, ...); the other agents take none."""
 
 
 @dataclass(frozen=True)
@@ -250,8 +266,10 @@ class ExperimentConfig:
         raise ConfigError(f"{where}: no strategy named {name!r} in {self.source} (known: {known})")
 
     def agent_params(self, spec: StrategySpec) -> dict[str, Any]:
-        """Agent config fields of one strategy: the shared table overlaid with its own."""
-        return {**self.agent, **spec.config}
+        """``TreeConfig`` fields of one strategy: the shared ``[agent]`` table, or its preset's
+        fields when it names one, overlaid with its own ``config``."""
+        base = preset_config(named_preset(spec.preset)) if spec.preset else self.agent
+        return {**base, **spec.config}
 
     def task(self, name: str, option: str | None = None) -> TaskSpec:
         """The task called ``name`` (``option`` names where the name came from)."""
@@ -707,11 +725,14 @@ def task_to_dict(task: TaskSpec) -> dict[str, Any]:
 
 def strategy_to_dict(spec: StrategySpec) -> dict[str, Any]:
     """One ``[[strategy]]`` table."""
-    table: dict[str, Any] = {
-        "name": spec.name,
-        "agent": spec.agent,
-        "exploration": spec.exploration,
-    }
+    table: dict[str, Any] = {"name": spec.name, "agent": spec.agent}
+    if is_fixed(spec.agent):
+        if spec.agent_params:
+            table["agent_params"] = dict(spec.agent_params)
+        return table
+    if spec.preset is not None:
+        table["preset"] = spec.preset
+    table["exploration"] = spec.exploration
     if spec.exploration_params:
         table["exploration_params"] = dict(spec.exploration_params)
     if spec.config:
@@ -1123,6 +1144,26 @@ class _Reader:
         self.only(raw, where, {f.name for f in dataclasses.fields(StrategySpec)})
         name = self.name(raw, where, "name")
         kind = self.choice(raw, where, "agent", AGENT_KINDS, "tree")
+        prefix = f"{self.source}: [{where}]"
+        if is_fixed(kind):
+            for key in ("preset", "exploration", "exploration_params", "config", "resolution"):
+                if key in raw:
+                    raise self.fail(
+                        where,
+                        key,
+                        f'does not apply to agent = "{kind}" (it explores by its own rule; '
+                        "its parameters go in agent_params)",
+                    )
+            agent_params = dict(self.value(raw, where, "agent_params", dict, {}))
+            _agent_check(lambda: check_agent_params(kind, agent_params, f"{prefix} agent_params"))
+            return StrategySpec(name=name, agent=kind, agent_params=agent_params)
+        if "agent_params" in raw:
+            raise self.fail(
+                where,
+                "agent_params",
+                f'only applies to agent = "tile" or "adaptive-q" (agent = "{kind}" takes '
+                "TreeConfig fields in config)",
+            )
         resolution = raw.get("resolution")
         if kind == "grid":
             if resolution is None:
@@ -1130,14 +1171,22 @@ class _Reader:
             resolution = self.resolution(resolution, where)
         elif resolution is not None:
             raise self.fail(where, "resolution", 'only applies to agent = "grid"')
-        exploration = self.value(raw, where, "exploration", str, "adaptive+tabu")
+        preset = None
+        if "preset" in raw:
+            preset = self.choice(raw, where, "preset", PRESET_NAMES, "")
+        named = named_preset(preset) if preset is not None else None
+        default_exploration = named.exploration if named is not None else "adaptive+tabu"
+        exploration = self.value(raw, where, "exploration", str, default_exploration)
         params = dict(self.value(raw, where, "exploration_params", dict, {}))
+        if named is not None and exploration == named.exploration:
+            params = {**named.exploration_params, **params}
         config = dict(self.value(raw, where, "config", dict, {}))
-        prefix = f"{self.source}: [{where}]"
         _agent_check(lambda: exploration_from_data(exploration, params, f"{prefix} exploration"))
         if config:
             _agent_check(lambda: config_from_data(config, f"{prefix} config"))
-        _agent_check(lambda: config_from_data({**agent, **config}, f"{prefix} [agent] + config"))
+        base = preset_config(named) if named is not None else dict(agent)
+        under = f"preset {preset!r}" if named is not None else "[agent]"
+        _agent_check(lambda: config_from_data({**base, **config}, f"{prefix} {under} + config"))
         return StrategySpec(
             name=name,
             agent=kind,
@@ -1145,6 +1194,7 @@ class _Reader:
             exploration_params=params,
             config=config,
             resolution=resolution,
+            preset=preset,
         )
 
     def resolution(self, value: Any, where: str) -> int | tuple[int, ...]:

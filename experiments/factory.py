@@ -18,6 +18,7 @@ import numpy as np
 
 from agent.serialization import check_grid_resolution, config_from_data, exploration_from_data
 from experiments import fingerprint
+from experiments.agent_kinds import FIXED_AGENTS, is_fixed
 from experiments.config import ConfigError, EnvSpec, ExperimentConfig, StrategySpec, TaskSpec
 
 
@@ -63,9 +64,20 @@ def make_agent(
     ``bounds`` (an ``EnvSpec``'s ``observation_bounds``) is the box its partition covers."""
     from agent import GridAgent, TreeAgent
 
+    where = f"{config.source}: [strategy {strategy.name!r}]"
+    if is_fixed(strategy.agent):
+        try:
+            return FIXED_AGENTS[strategy.agent](
+                env.observation_space,
+                env.action_space,
+                seed,
+                bounds=bounds,
+                **strategy.agent_params,
+            )
+        except (TypeError, ValueError) as error:
+            raise ConfigError(f"{where} agent_params: {error}") from None
     tree_config = agent_config(config, strategy)
     exploration = make_exploration(config, strategy)
-    where = f"{config.source}: [strategy {strategy.name!r}]"
     try:
         if strategy.agent == "grid":
             dims = int(np.prod(env.observation_space.shape or (1,)))

@@ -44,6 +44,7 @@ RESULT_SOURCES = (
     "bullet_maze",
     "experiments/training.py",
     "experiments/factory.py",
+    "experiments/agent_kinds.py",
     "experiments/seeding.py",
     "experiments/evaluation.py",
 )
@@ -130,22 +131,42 @@ def resolved_config(
     """Every setting of one run, defaults filled in (``TreeConfig`` and the strategy's)."""
     from agent import TreeConfig
     from agent.exploration import exploration_spec, make_exploration
+    from experiments.agent_kinds import is_fixed, resolved_agent_params
 
+    if is_fixed(strategy.agent):  # a baseline with its own rule: its arguments, in full
+        return _with_evaluation(
+            experiment,
+            {
+                "episodes": experiment.episodes,
+                "seed": seed,
+                "env": _env_settings(env),
+                "agent": strategy.agent,
+                "agent_params": resolved_agent_params(strategy.agent, strategy.agent_params),
+            },
+        )
     config = TreeConfig(**experiment.agent_params(strategy)).to_dict()
     params = exploration_spec(make_exploration(strategy.exploration, **strategy.exploration_params))
-    env_settings = dataclasses.asdict(env)
-    if env_settings.get("observation_bounds") is None:  # settings added later appear only when
-        env_settings.pop("observation_bounds", None)  # set: earlier runs keep their fingerprint
     settings = {
         "episodes": experiment.episodes,
         "seed": seed,
-        "env": env_settings,
+        "env": _env_settings(env),
         "agent": strategy.agent,
         "resolution": strategy.resolution,
         "exploration": strategy.exploration,
         "exploration_params": params["params"],
         "agent_config": config,
     }
+    return _with_evaluation(experiment, settings)
+
+
+def _env_settings(env: EnvSpec) -> dict[str, Any]:
+    settings = dataclasses.asdict(env)
+    if settings.get("observation_bounds") is None:  # settings added later appear only when
+        settings.pop("observation_bounds", None)  # set: earlier runs keep their fingerprint
+    return settings
+
+
+def _with_evaluation(experiment: ExperimentConfig, settings: dict[str, Any]) -> dict[str, Any]:
     if experiment.eval_episodes:
         settings["eval_episodes"] = experiment.eval_episodes
     if experiment.save_agents:

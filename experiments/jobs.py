@@ -24,6 +24,7 @@ import numpy as np
 from agent.serialization import config_from_data, exploration_from_data
 from experiments import config as config_module
 from experiments import factory, runner
+from experiments.agent_kinds import is_fixed
 from experiments.config import ConfigError, EnvSpec, ExperimentConfig
 from experiments.evaluation import Episode, Evaluation, evaluate, greedy_episode
 from experiments.plan import RunSpec, select_strategies
@@ -149,6 +150,12 @@ class TrainJob:
             if strategy is not None
             else file_config.strategies[0]
         )
+        if is_fixed(spec.agent):
+            raise ConfigError(
+                f"{file_config.source}: [strategy {spec.name!r}]: run.py train saves the agent "
+                f'and draws its partition, which agent = "{spec.agent}" cannot; run it with '
+                f"run.py experiment {file_config.source} --only {spec.name}"
+            )
         given = config_module.parse_assignments(params or (), "--param")
         if exploration is not None:
             config_module.check_option_text(exploration, "--exploration")
@@ -163,7 +170,7 @@ class TrainJob:
         fields = config_module.parse_assignments(agent_params or (), "--agent-param")
         if fields:
             _checked(lambda: config_from_data(fields, "option --agent-param"))
-            merged_fields = {**file_config.agent, **spec.config, **fields}
+            merged_fields = {**file_config.agent_params(spec), **fields}
             _checked(lambda: config_from_data(merged_fields, "option --agent-param"))
             spec = dataclasses.replace(spec, config={**spec.config, **fields})
         budget = file_config.time_budget_s

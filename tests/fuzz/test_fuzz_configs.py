@@ -60,6 +60,14 @@ VALID: dict[str, Any] = {
             "config": {"max_leaves": 100},
         },
         {"name": "grid", "agent": "grid", "resolution": [4, 5], "exploration": "greedy"},
+        {
+            "name": "general",
+            "preset": "general",
+            "config": {"split_min_samples": 80},
+            "exploration_params": {"c_h": 0.02},
+        },
+        {"name": "tile", "agent": "tile", "agent_params": {"tilings": 4, "alpha": 0.4}},
+        {"name": "aq", "agent": "adaptive-q", "agent_params": {"r_max": 0.5, "max_depth": 6}},
     ],
 }
 """A file that uses every kind of value: each leaf below is fuzzed."""
@@ -117,7 +125,7 @@ CASES = [
 
 def test_the_valid_file_is_valid():
     config = parse_config(copy.deepcopy(VALID), source="fuzz.toml")
-    assert [s.name for s in config.strategies] == ["eps", "tabu", "grid"]
+    assert [s.name for s in config.strategies] == ["eps", "tabu", "grid", "general", "tile", "aq"]
 
 
 @pytest.mark.parametrize(("path", "hostile"), CASES, ids=[f"{p}={h!r:.30}" for p, h in CASES])

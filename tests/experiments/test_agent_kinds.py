@@ -1,0 +1,253 @@
+"""Strategies of every agent of issue 9: a named preset, the tile coder, adaptive Q-learning.
+
+A preset strategy is the preset (its TreeConfig replaces ``[agent]``, its strategy is the
+default), spelt out or named it is the same run; the fixed baselines take their constructor
+arguments from ``agent_params`` and nothing else; every error names the file and the key.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+import pytest
+
+import run
+from agent import AdaptiveQAgent, TileCodingAgent, TreeAgent, preset
+from agent.exploration import exploration_spec
+from experiments import factory, fingerprint
+from experiments.config import (
+    ConfigError,
+    dumps,
+    load_config,
+    parse_config,
+    same_experiment,
+    to_dict,
+)
+from experiments.jobs import TrainJob
+
+BASE: dict[str, Any] = {
+    "experiment": {"name": "kinds", "seed": 4, "runs": 1, "episodes": 2},
+    "env": {"id": "MountainCar-v0"},
+    "agent": {"split_min_samples": 321, "alpha": 0.2},
+    "strategy": [{"name": "eps", "exploration": "epsilon-greedy"}],
+}
+
+
+def _with(*strategies: dict[str, Any]) -> dict[str, Any]:
+    data = copy.deepcopy(BASE)
+    data["strategy"] += list(strategies)
+    return data
+
+
+def _parse(*strategies: dict[str, Any]) -> Any:
+    return parse_config(_with(*strategies), source="kinds.toml")
+
+
+@pytest.fixture(scope="module")
+def car() -> gym.Env:
+    env = gym.make("MountainCar-v0")
+    yield env
+    env.close()
+
+
+@pytest.mark.parametrize("name", ["paper", "paper-literal", "general"])
+def test_a_preset_strategy_is_the_preset(name: str, car: gym.Env):
+    config = _parse({"name": "p", "preset": name})
+    strategy = config.strategies[-1]
+    named = preset(name)
+    assert factory.agent_config(config, strategy) == named.config  # [agent] does not apply
+    assert strategy.exploration == named.exploration
+    built = factory.make_exploration(config, strategy)
+    assert exploration_spec(built) == exploration_spec(named.make_exploration())
+    agent = factory.make_agent(config, strategy, car, seed=3)
+    assert isinstance(agent, TreeAgent)
+    assert agent.config == named.config
+
+
+def test_a_preset_strategy_takes_its_own_changes():
+    config = _parse(
+        {
+            "name": "p",
+            "preset": "paper-literal",
+            "config": {"split_min_samples": 50},
+            "exploration_params": {"shrink_every": 3},
+        },
+        {"name": "q", "preset": "general", "exploration": "epsilon-greedy"},
+    )
+    literal, other = config.strategies[1:]
+    tree = factory.agent_config(config, literal)
+    assert tree == dataclasses.replace(preset("paper-literal").config, split_min_samples=50)
+    assert literal.exploration_params == {
+        **preset("paper-literal").exploration_params,
+        "shrink_every": 3,
+    }
+    assert other.exploration == "epsilon-greedy"
+    assert other.exploration_params == {}
+    assert factory.agent_config(config, other) == preset("general").config
+
+
+def test_named_and_spelt_out_presets_are_the_same_run():
+    """``general_paper.toml`` spells the general preset out: naming it gives the same run
+    fingerprint (the resolved settings), so either file's runs are the other's."""
+    shipped = load_config("general_paper")
+    spelt = shipped.strategy("general")
+    data = to_dict(shipped)
+    data["strategy"] = [{"name": "general", "preset": "general"}]
+    data["experiment"].pop("baseline")
+    named = parse_config(data, source="named.toml").strategies[0]
+    for seed in (0, 12345):
+        assert fingerprint.resolved_config(
+            shipped, spelt, shipped.env, seed
+        ) == fingerprint.resolved_config(shipped, named, shipped.env, seed)
+
+
+def test_fixed_agents_are_built_with_their_parameters(car: gym.Env):
+    config = _parse(
+        {"name": "tile", "agent": "tile", "agent_params": {"tilings": 4, "tiles": 6, "alpha": 0.3}},
+        {"name": "aq", "agent": "adaptive-q", "agent_params": {"bonus_scale": 0.5, "r_max": 0.0}},
+    )
+    tile = factory.make_agent(config, config.strategy("tile"), car, seed=9)
+    assert isinstance(tile, TileCodingAgent)
+    assert (tile.tilings, tile.tiles, tile.alpha, tile.seed) == (4, 6, 0.3, 9)
+    assert tile.gamma == 0.99  # its own default: [agent] applies to tree and grid only
+    aq = factory.make_agent(config, config.strategy("aq"), car, seed=2)
+    assert isinstance(aq, AdaptiveQAgent)
+    assert (aq.bonus_scale, aq.r_max, aq.seed) == (0.5, 0.0, 2)
+
+
+def test_a_fixed_agent_fingerprint_holds_every_argument():
+    config = _parse(
+        {"name": "tile", "agent": "tile", "agent_params": {"tilings": 4}},
+        {"name": "tile2", "agent": "tile", "agent_params": {"tilings": 4, "lam": 0.9}},
+        {"name": "tile3", "agent": "tile", "agent_params": {"tilings": 4, "lam": 0.8}},
+    )
+    settings = [
+        fingerprint.resolved_config(config, s, config.env, 1) for s in config.strategies[1:]
+    ]
+    assert settings[0]["agent_params"]["tilings"] == 4
+    assert settings[0]["agent_params"]["alpha"] == 0.5  # defaults filled in
+    assert "agent_config" not in settings[0]
+    assert "exploration" not in settings[0]
+    assert settings[0] == settings[1]  # lam = 0.9 is the default
+    assert settings[0] != settings[2]
+
+
+def test_every_kind_round_trips(tmp_path: Path):
+    config = _parse(
+        {"name": "p", "preset": "paper-literal", "exploration_params": {"shrink_every": 3}},
+        {"name": "tile", "agent": "tile", "agent_params": {"tilings": 4}},
+        {"name": "aq", "agent": "adaptive-q"},
+    )
+    path = tmp_path / "again.toml"
+    path.write_text(dumps(config))
+    again = load_config(path)
+    assert again.strategies == config.strategies
+    assert same_experiment(config, again) == []
+    assert "exploration" not in path.read_text().split('name = "tile"')[1].split("[[")[0]
+
+
+@pytest.mark.parametrize(
+    ("strategy", "named"),
+    [
+        ({"name": "x", "preset": "generall"}, "preset: expected one of general, paper"),
+        ({"name": "x", "preset": 3}, "preset: expected a string"),
+        ({"name": "x", "agent": "tiles"}, "agent: expected one of tree, grid, tile, adaptive-q"),
+        ({"name": "x", "agent": "tile", "exploration": "boltzmann"}, "exploration: does not"),
+        ({"name": "x", "agent": "tile", "preset": "general"}, "preset: does not apply"),
+        ({"name": "x", "agent": "adaptive-q", "config": {"alpha": 0.1}}, "config: does not"),
+        ({"name": "x", "agent": "tile", "resolution": 4}, "resolution: does not apply"),
+        ({"name": "x", "agent_params": {"tilings": 4}}, "agent_params: only applies"),
+        ({"name": "x", "agent": "tile", "agent_params": {"tilngs": 4}}, "'tilngs' is not a"),
+        ({"name": "x", "agent": "tile", "agent_params": {"tilings": 0}}, "tilings must be"),
+        ({"name": "x", "agent": "tile", "agent_params": {"tilings": 2.0}}, "tilings: expected"),
+        ({"name": "x", "agent": "tile", "agent_params": {"alpha": True}}, "alpha: expected"),
+        ({"name": "x", "agent": "tile", "agent_params": {"seed": 1}}, "'seed' is not a"),
+        ({"name": "x", "agent": "tile", "agent_params": {"bounds": [0, 1]}}, "'bounds' is not"),
+        ({"name": "x", "agent": "tile", "agent_params": 4}, "agent_params: expected a table"),
+        ({"name": "x", "agent": "adaptive-q", "agent_params": {"gamma": 1.0}}, "gamma must be"),
+        ({"name": "x", "agent": "adaptive-q", "agent_params": {"max_depth": -1}}, "max_depth"),
+        ({"name": "x", "agent": "adaptive-q", "agent_params": {"horizon": 0.5}}, "horizon"),
+        (
+            {"name": "x", "preset": "general", "config": {"split_min_samples": 0}},
+            "config: TreeConfig",
+        ),
+        ({"name": "x", "preset": "general", "exploration_params": {"c_h": "a"}}, "c_h"),
+    ],
+)
+def test_errors_name_the_file_the_strategy_and_the_field(strategy: dict[str, Any], named: str):
+    with pytest.raises(ConfigError) as error:
+        _parse(strategy)
+    message = str(error.value)
+    assert message.startswith("kinds.toml: [strategy.1]"), message
+    assert named in message, message
+
+
+def test_train_refuses_a_fixed_agent_and_says_what_to_run(tmp_path: Path):
+    path = tmp_path / "kinds.toml"
+    data = _with({"name": "tile", "agent": "tile"})
+    path.write_text(dumps(parse_config(data, source=str(path))))
+    with pytest.raises(ConfigError, match=r"run\.py experiment .* --only tile"):
+        TrainJob.from_options(path, strategy="tile", out=tmp_path / "out")
+    with pytest.raises(SystemExit) as stop:  # the CLI: a message, no traceback
+        run.main(["train", "--config", str(path), "--strategy", "tile"])
+    assert stop.value.code == 2
+
+
+def test_every_kind_runs_in_an_experiment_and_repeats_bit_for_bit(tmp_path: Path):
+    """One run of each new kind in a maze, twice: the same CSVs to the byte."""
+    data = {
+        "experiment": {"name": "kinds", "seed": 11, "runs": 1, "episodes": 2},
+        "env": {"maze": "open", "max_episode_steps": 100},
+        "strategy": [
+            {"name": "general", "preset": "general"},
+            {"name": "tile", "agent": "tile"},
+            {"name": "aq", "agent": "adaptive-q"},
+        ],
+    }
+    path = tmp_path / "kinds.toml"
+    path.write_text(dumps(parse_config(data, source="kinds.toml")))
+    outputs = []
+    for name in ("a", "b"):
+        out = tmp_path / name
+        code = run.main(
+            ["experiment", str(path), "--backend", "serial", "--no-progress", "--out", str(out)]
+        )
+        assert code == 0
+        outputs.append({p.name: p.read_bytes() for p in sorted((out / "runs").glob("*.csv"))})
+    assert len(outputs[0]) == 3
+    assert outputs[0] == outputs[1]
+
+
+ISSUE_9_STRATEGIES = {
+    "general",
+    "tile",
+    "adaptive-q",
+    "boltzmann",
+    "count-bonus",
+    "decaying-epsilon",
+    "vdbe-softmax",
+    "optimistic",
+}
+
+
+@pytest.mark.parametrize("name", ["maze_suite", "classic_control"])
+def test_the_shipped_comparisons_hold_every_agent_of_issue_9(name: str):
+    config = load_config(name)
+    assert {s.name for s in config.strategies} >= ISSUE_9_STRATEGIES
+    assert config.strategy("general").preset == "general"
+    kinds = {s.agent for s in config.strategies}
+    assert {"tree", "tile", "adaptive-q"} <= kinds
+    explorations = {s.exploration for s in config.strategies if s.agent == "tree"}
+    assert {"boltzmann", "count-bonus", "decaying-epsilon", "vdbe-softmax", "optimistic"} <= (
+        explorations
+    )
+    task = config.tasks[-1]  # every agent builds for a task's environment
+    env = factory.make_env(task.env)
+    try:
+        factory.check_agents(config, env, task.env)
+    finally:
+        env.close()
