@@ -121,11 +121,12 @@ def test_distance_queries_see_every_nearby_solid() -> None:
         env.close()
 
 
+@pytest.mark.parametrize("mode", ["kinematic", "dynamic"])
 @pytest.mark.parametrize("spec", [FOREST, MAZE])
-def test_dynamic_mode_and_rendering_with_hundreds_of_solids(
-    make_env: Callable[..., gym.Env], spec: str
+def test_both_modes_step_and_render_hundreds_of_solids(
+    make_env: Callable[..., gym.Env], spec: str, mode: str
 ) -> None:
-    env = make_env(maze=spec, mode="dynamic", render_mode="rgb_array")
+    env = make_env(maze=spec, mode=mode, render_mode="rgb_array")
     env.reset(seed=0)
     rng = np.random.default_rng(3)
     collided = 0
