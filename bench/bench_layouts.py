@@ -10,11 +10,14 @@ forests of N cylinders in a fixed 1,000 x 1,000 arena (denser with N). Every rou
 runs every case, alternately forwards and backwards; rates are medians over the rounds and each
 ratio (to the N = 10 case of its series) the median of the ratios within the rounds.
 
+Each measurement runs in a fresh process. ``--compare-with DIR`` measures, in the same rounds, the
+package found in DIR, an export of an older tree (``git archive COMMIT | tar -x -C DIR``), for a
+before/after.
+
 ``--only limit``: the physical limit (``shortest_path``) of 200-tree forests in arenas of 300 to
 2,000 units and of a 200-wall maze, each case in a fresh process: wall time and the growth of the
 resident set (peak RSS after minus before), against the ``paper`` layout in the same run.
-``--compare-with DIR`` runs the same cases (arenas up to 1,000) with the package found in DIR,
-an export of an older tree (``git archive COMMIT | tar -x -C DIR``), for a before/after.
+With ``--compare-with DIR`` the older tree runs the same cases (arenas up to 1,000).
 
 Run: ``python bench/bench_layouts.py`` (``--quick`` for a smoke test).
 """
@@ -145,34 +148,52 @@ def free_points(layout: bullet_maze.MazeLayout, rng: np.random.Generator, n: int
     return points
 
 
-def bench_solids(counts: tuple[int, ...], rounds: int, steps: int, dynamic_steps: int) -> None:
+def measure_in(package: str, case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
+    """``measure`` in a fresh process that imports the package found in ``package``."""
+    env = dict(os.environ, PYTHONPATH=package)
+    command = [sys.executable, str(Path(__file__).resolve()), "--one", case.series, case.spec]
+    command += ["--steps", str(steps), "--dynamic-steps", str(dynamic_steps)]
+    out = subprocess.run(command, cwd=package, check=True, capture_output=True, text=True, env=env)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def bench_solids(
+    counts: tuple[int, ...], rounds: int, steps: int, dynamic_steps: int, compare: str | None
+) -> None:
+    here = str(Path(bullet_maze.__file__).resolve().parent.parent)
+    packages = [("this tree", here)] + ([("compared tree", compare)] if compare else [])
     found = cases(counts)
-    results: dict[Case, list[dict[str, float]]] = {case: [] for case in found}
+    results: dict[tuple[Case, str], list[dict[str, float]]] = {}
     for r in range(rounds):
         order = found if r % 2 == 0 else found[::-1]
         for case in order:
-            results[case].append(measure(case, steps, dynamic_steps))
+            for name, package in packages if r % 2 == 0 else packages[::-1]:
+                row = measure_in(package, case, steps, dynamic_steps)
+                results.setdefault((case, name), []).append(row)
         print(f"round {r + 1}/{rounds} done", file=sys.stderr)
     print(
-        "| series | solids | arena | build (ms) | kinematic steps/s | vs N=10 | queries/step | "
-        "us/query | dynamic steps/s | vs N=10 | render (ms) |"
+        "| series | code | solids | arena | build (ms) | kinematic steps/s | vs N=10 | "
+        "queries/step | us/query | dynamic steps/s | vs N=10 | render (ms) |"
     )
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for case in found:
-        rows = results[case]
-        reference = results[next(c for c in found if c.series == case.series)]
-        med = {key: statistics.median(row[key] for row in rows) for key in rows[0]}
-        kin = statistics.median(
-            a["kinematic"] / b["kinematic"] for a, b in zip(rows, reference, strict=True)
-        )
-        dyn = statistics.median(
-            a["dynamic"] / b["dynamic"] for a, b in zip(rows, reference, strict=True)
-        )
-        print(
-            f"| {case.series} | {med['solids']:.0f} | {med['arena']:.0f} | {med['build_ms']:.0f} | "
-            f"{med['kinematic']:,.0f} | {kin:.2f} | {med['queries']:.3f} | {med['query_us']:.1f} | "
-            f"{med['dynamic']:,.0f} | {dyn:.2f} | {med['render_ms']:.0f} |"
-        )
+        for name, _ in packages:
+            rows = results[case, name]
+            first = next(c for c in found if c.series == case.series)
+            reference = results[first, name]
+            med = {key: statistics.median(row[key] for row in rows) for key in rows[0]}
+            kin = statistics.median(
+                a["kinematic"] / b["kinematic"] for a, b in zip(rows, reference, strict=True)
+            )
+            dyn = statistics.median(
+                a["dynamic"] / b["dynamic"] for a, b in zip(rows, reference, strict=True)
+            )
+            print(
+                f"| {case.series} | {name} | {med['solids']:.0f} | {med['arena']:.0f} | "
+                f"{med['build_ms']:.0f} | {med['kinematic']:,.0f} | {kin:.2f} | "
+                f"{med['queries']:.3f} | {med['query_us']:.1f} | {med['dynamic']:,.0f} | "
+                f"{dyn:.2f} | {med['render_ms']:.0f} |"
+            )
 
 
 LIMIT_CODE = """
@@ -261,15 +282,21 @@ def main() -> None:
     parser.add_argument("--rounds", type=int, default=5, help="interleaved rounds (default 5)")
     parser.add_argument("--steps", type=int, default=20_000, help="kinematic steps per case")
     parser.add_argument("--dynamic-steps", type=int, default=2_000, help="dynamic steps per case")
-    parser.add_argument("--compare-with", metavar="DIR", help="an older tree for --only limit")
+    parser.add_argument("--compare-with", metavar="DIR", help="an older tree to compare with")
+    parser.add_argument("--one", nargs=2, metavar=("SERIES", "SPEC"), help=argparse.SUPPRESS)
     parser.add_argument("--quick", action="store_true", help="a smoke test: small and short")
     args = parser.parse_args()
+    if args.one:  # one measurement, for measure_in
+        case = Case(args.one[0], 0, args.one[1])
+        print(json.dumps(measure(case, args.steps, args.dynamic_steps)))
+        return
     jobs: dict[str, Callable[[], None]] = {
         "solids": lambda: bench_solids(
             (10, 200) if args.quick else COUNTS,
             1 if args.quick else args.rounds,
             2_000 if args.quick else args.steps,
             200 if args.quick else args.dynamic_steps,
+            args.compare_with,
         ),
         "limit": lambda: bench_limit(
             1 if args.quick else args.rounds, args.quick, args.compare_with

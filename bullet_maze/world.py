@@ -6,18 +6,34 @@ y map to world x and y, z is up. The world holds
 * the ground, a plane (collision) under a light floor (visual);
 * static bodies for the solids: the four arena walls, the layout's walls (boxes) and obstacles
   (grey cylinders, section V.A). When they fit, one compound shape holds them all, so that one
-  query covers them; a compound holds at most ``COMPOUND_CHILDREN`` pieces (pybullet crashes
-  beyond 16), so a larger layout is split into compounds of nearby pieces, and a query asks only
-  the compounds whose bounding box lies within its reach;
+  query covers them; ``createCollisionShapeArray``'s compounds hold at most
+  ``COMPOUND_CHILDREN`` pieces (pybullet crashes beyond 16), so a larger layout has the four arena
+  walls one body each and the rest in compounds of up to ``URDF_CHILDREN`` nearby pieces, each
+  loaded from a URDF of one link with many collision and visual elements (pybullet's physics step
+  costs about the same per static body whatever its size: 1,000 walls in 8 bodies step 2.5 times
+  faster than in 132 compounds of 16);
 * visual-only markers: the green start square and the red goal circle (section V.A);
 * a collision probe: a cylinder of the robot's footprint radius with no visual shape, moved
   along a step to test it (``sweep_collides``). It is filtered out of the physics simulation;
   cameras would draw its collision shape, so it is parked under the floor before rendering.
+
+Queries in a layout of several solid bodies go to a query index instead (``_RegionIndex``): a
+second pybullet client that only answers distance queries, holding its own probe and, for each
+``REGION``-unit square of the arena that a query has visited, one body whose compound shape holds
+every piece that can lie within ``SAFE_REACH`` of a footprint centred in the square (pieces are
+copied into every square they are near). A query of that reach is then one ``getClosestPoints``
+call against one body whatever the number of solids; its answers are the same pieces' answers,
+bit for bit, as those of the bodies above (the same shapes at the same places). Longer reaches ask
+the bodies above. The index never takes part in the simulation or in pictures.
 """
 
 from __future__ import annotations
 
+import contextlib
 import math
+import os
+import tempfile
+import weakref
 from typing import NamedTuple
 
 import numpy as np
@@ -47,8 +63,26 @@ CELL_REACH = 20.0
 cell's centre (a cell's corner plus a step and its noise is less than 10)."""
 
 COMPOUND_CHILDREN = 16
-"""Most pieces in one compound collision shape: pybullet's limit (a layout with 13 obstacles and
-the four arena walls crashed the process before the solids were split)."""
+"""Most pieces in one compound of ``createCollisionShapeArray``: pybullet's limit (a layout with 13
+obstacles and the four arena walls crashed the process before the solids were split)."""
+
+URDF_CHILDREN = 256
+"""Most pieces in one solid body loaded from a URDF (a link's collision elements make one compound,
+which has no such limit: 8,000 load and answer queries). Measured on a maze of 1,128 walls in
+dynamic mode: compounds of 16, 64, 256 and all pieces in one body ran 9,700, 20,500, 24,000 and
+23,400 steps/s (bit-identical rollouts); pybullet visits every child of a compound a body meets."""
+
+REGION = 200.0
+"""Maze units: side of the squares of the query index (``_RegionIndex``): each holds a compound of
+the pieces within about ``SAFE_REACH`` of it (in a forest of 1,000 trees in 1,000 x 1,000, about
+100), so a query's cost depends on the solids near it, not on their number. A square's body costs
+about 0.5 ms to build (at most 121 squares in the largest arena); a piece in it costs a query about
+4 ns (pybullet's compound test visits every child)."""
+
+REGION_MARGIN = 1.0
+"""Maze units added to the reach of a region's body, far above pybullet's collision margins (0.001
+m): a piece left out of a square's body is farther than ``SAFE_REACH`` plus this from every
+footprint centred in the square."""
 
 MAX_SWEEP_QUERIES = 256
 """Bound on the distance queries of one sweep; a sweep that needs more counts as a collision."""
@@ -91,6 +125,11 @@ class World:
         self._safe = (math.nan, math.nan, -math.inf)  # centre x, y and radius of the safe ball
         self._disc = self._safe  # the cell's free disc that last certified a move
         self._cells: dict[tuple[int, int], _CellBounds | None] = {}
+        self._index = (
+            None
+            if self._single is not None
+            else _RegionIndex(self._pieces(), robot_radius, layout.arena)
+        )
 
     def _build_ground(self) -> int:
         s, c = METRES_PER_UNIT, self.client
@@ -127,12 +166,20 @@ class World:
     def _build_solids(self) -> list[int]:
         """The solid bodies: one compound when every piece fits in one (boxes first, as
         ``_pieces`` orders them), else the four arena walls one body each and the rest in
-        compounds of nearby pieces."""
+        URDF compounds of nearby pieces."""
         pieces = self._pieces()
         if len(pieces) <= COMPOUND_CHILDREN:
             return [self._build_compound(pieces)]
-        groups = [[piece] for piece in pieces[:4]] + _nearby_groups(pieces[4:])
-        return [self._build_compound(group) for group in groups]
+        arena = [self._build_compound([piece]) for piece in pieces[:4]]
+        bodies = [
+            _load_urdf(self.client, group, visual=True)
+            for group in _nearby_groups(pieces[4:], URDF_CHILDREN)
+        ]
+        for body in bodies:
+            # The importer gives the compound itself (not its pieces) a margin of 1 mm, which
+            # widens its bounding box; createMultiBody's compounds have none.
+            pb.changeDynamics(body, -1, collisionMargin=0.0, physicsClientId=self.client)
+        return arena + bodies
 
     def _build_compound(self, pieces: list[_Piece]) -> int:
         s, c = METRES_PER_UNIT, self.client
@@ -352,14 +399,19 @@ class World:
 
     def _closest(self, x: float, y: float, reach: float) -> list[tuple]:
         """pybullet's closest points between the footprint at (x, y) and every solid piece
-        within ``reach`` (plus the tolerance). With several solid bodies, only those whose
-        broadphase bounding box (which holds the body) meets the square of that reach around
-        the footprint are asked: the others are farther."""
-        self.place_probe(x, y)
+        within ``reach`` (plus the tolerance). With several solid bodies, a reach up to
+        ``SAFE_REACH`` asks the body of (x, y)'s square in the query index, which holds every
+        piece that close; a longer one asks the solid bodies whose broadphase bounding box
+        (which holds the body) meets the square of that reach around the footprint: the others
+        are farther."""
         s, c = METRES_PER_UNIT, self.client
         far = (reach + CONTACT_TOLERANCE) * s
         if self._single is not None:
+            self.place_probe(x, y)
             return pb.getClosestPoints(self.probe_id, self._single, far, physicsClientId=c)
+        if reach <= SAFE_REACH and self._index is not None:
+            return self._index.closest(x, y, far)
+        self.place_probe(x, y)
         e = (reach + self.robot_radius + 2 * CONTACT_TOLERANCE) * s
         top = WALL_HEIGHT * s
         near = pb.getOverlappingObjects(
@@ -371,6 +423,12 @@ class World:
             if body in solids:
                 points.extend(pb.getClosestPoints(self.probe_id, body, far, physicsClientId=c))
         return points
+
+    def close(self) -> None:
+        """Disconnect the query index's client (the world's own client is its owner's)."""
+        if self._index is not None:
+            self._index.close()
+            self._index = None
 
     def touching(self, body_id: int) -> bool:
         """Whether a simulated body is in contact with a wall or an obstacle."""
@@ -419,10 +477,136 @@ class _CellBounds:
         return True
 
 
-def _nearby_groups(pieces: list[_Piece]) -> list[list[_Piece]]:
-    """Split pieces into groups of at most ``COMPOUND_CHILDREN`` by halving along the longer
-    side of their centres' spread, so that each group's bounding box is small."""
-    if len(pieces) <= COMPOUND_CHILDREN:
+class _RegionIndex:
+    """The query index of a layout of several solid bodies: a pybullet client of its own with a
+    probe and one static body per ``REGION`` square of the arena (those outside it, which a move
+    through the arena's wall may visit, when first asked; see the module docstring)."""
+
+    def __init__(
+        self, pieces: list[_Piece], robot_radius: float, arena: tuple[float, float]
+    ) -> None:
+        self.pieces = pieces
+        half = np.array(
+            [(p.size[0] / 2, p.size[1] / 2) if not p.radius else (p.radius,) * 2 for p in pieces]
+        )
+        centres = np.array([p.center for p in pieces])
+        self._low, self._high = centres - half, centres + half  # bounding boxes
+        # A footprint centred in the square is farther than SAFE_REACH + REGION_MARGIN from a
+        # piece whose bounding box is farther than this from the square.
+        self._margin = SAFE_REACH + CONTACT_TOLERANCE + robot_radius + REGION_MARGIN
+        self.client = pb.connect(pb.DIRECT)
+        self._finalizer = weakref.finalize(self, _disconnect, self.client)
+        s, c = METRES_PER_UNIT, self.client
+        shape = pb.createCollisionShape(
+            pb.GEOM_CYLINDER, radius=robot_radius * s, height=WALL_HEIGHT / 2 * s, physicsClientId=c
+        )
+        self.probe_id = pb.createMultiBody(0.0, shape, -1, physicsClientId=c)
+        self._probe_xy = (math.nan, math.nan)
+        self._bodies: dict[tuple[int, int], int | None] = {}
+        for i in range(int(arena[0] // REGION) + 1):
+            for j in range(int(arena[1] // REGION) + 1):
+                self._bodies[i, j] = self._build((i, j))
+
+    def closest(self, x: float, y: float, far: float) -> list[tuple]:
+        """``getClosestPoints`` within ``far`` (metres, at most ``SAFE_REACH`` units plus the
+        tolerance) between the footprint at (x, y) and the body of (x, y)'s square."""
+        square = (int(x // REGION), int(y // REGION))
+        body = self._bodies.get(square, -1)
+        if body == -1:
+            body = self._bodies[square] = self._build(square)
+        if body is None:
+            return []
+        c = self.client
+        if (x, y) != self._probe_xy:
+            s = METRES_PER_UNIT
+            position = (x * s, y * s, WALL_HEIGHT / 4 * s)
+            pb.resetBasePositionAndOrientation(
+                self.probe_id, position, _IDENTITY, physicsClientId=c
+            )
+            self._probe_xy = (x, y)
+        return pb.getClosestPoints(self.probe_id, body, far, physicsClientId=c)
+
+    def _build(self, square: tuple[int, int]) -> int | None:
+        """The square's body: the pieces whose bounding box comes within the margin of it, as one
+        compound (a URDF link of many collision elements, where pybullet's compounds of
+        ``createCollisionShapeArray`` stop at 16 pieces); None if there are none."""
+        low = np.array(square, dtype=float) * REGION - self._margin
+        high = low + REGION + 2 * self._margin
+        near = np.flatnonzero(np.all((self._high >= low) & (self._low <= high), axis=1))
+        if near.size == 0:
+            return None
+        return _load_urdf(self.client, [self.pieces[i] for i in near], visual=False)
+
+    def close(self) -> None:
+        self._finalizer()
+
+
+def _disconnect(client: int) -> None:
+    with contextlib.suppress(pb.error):  # already gone with its server
+        pb.disconnect(physicsClientId=client)
+
+
+def _load_urdf(client: int, pieces: list[_Piece], visual: bool) -> int:
+    """A static rigid body of one link whose compound holds the pieces (``_urdf``)."""
+    fd, path = tempfile.mkstemp(suffix=".urdf")
+    try:
+        with os.fdopen(fd, "w") as file:
+            file.write(_urdf(pieces, visual))
+        return pb.loadURDF(
+            path,
+            useMaximalCoordinates=True,
+            useFixedBase=True,
+            flags=pb.URDF_USE_IMPLICIT_CYLINDER,
+            physicsClientId=client,
+        )
+    finally:
+        os.unlink(path)
+
+
+def _urdf(pieces: list[_Piece], visual: bool) -> str:
+    """A URDF of one static link whose collision elements are the pieces, exactly as
+    ``World._build_compound`` makes them (boxes first; the same sizes in metres, written so that
+    they read back to the same doubles: queries answer bit for bit as on that compound), with a
+    visual element of the piece's colour each if ``visual``; one element a line (pybullet's reader
+    fails on very long lines). Without ``visual`` a tiny box stands for the link's looks: without
+    any, pybullet would tessellate every cylinder for its renderer (25 times slower to load)."""
+    s = METRES_PER_UNIT
+    z = WALL_HEIGHT / 2
+    lines = ['<?xml version="1.0"?>', '<robot name="solids">']
+    lines += [
+        f'<material name="{name}"><color rgba="{" ".join(repr(float(v)) for v in COLOURS[name])}"/>'
+        "</material>"
+        for name in ("wall", "obstacle")
+    ]
+    lines += [
+        '<link name="solids">',
+        '<inertial><mass value="0"/>'
+        '<inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>',
+    ]
+    if not visual:
+        lines.append('<visual><geometry><box size="0.001 0.001 0.001"/></geometry></visual>')
+    for piece in sorted(pieces, key=lambda p: p.radius > 0):
+        (cx, cy), (sx, sy) = piece.center, piece.size
+        if piece.radius:
+            radius, length = float(piece.radius * s), float(WALL_HEIGHT * s)
+            geometry = f'<cylinder radius="{radius!r}" length="{length!r}"/>'
+        else:
+            # The importer halves the sizes: twice _build_compound's half extents (exact).
+            size = (float(2 * (sx / 2 * s)), float(2 * (sy / 2 * s)), float(2 * (z * s)))
+            geometry = f'<box size="{size[0]!r} {size[1]!r} {size[2]!r}"/>'
+        x, y, h = float(cx * s), float(cy * s), float(z * s)
+        element = f'<origin xyz="{x!r} {y!r} {h!r}"/><geometry>{geometry}</geometry>'
+        lines.append(f"<collision>{element}</collision>")
+        if visual:
+            lines.append(f'<visual>{element}<material name="{piece.colour}"/></visual>')
+    lines.append("</link></robot>")
+    return "\n".join(lines) + "\n"
+
+
+def _nearby_groups(pieces: list[_Piece], most: int) -> list[list[_Piece]]:
+    """Split pieces into groups of at most ``most`` by halving along the longer side of their
+    centres' spread, so that each group's bounding box is small."""
+    if len(pieces) <= most:
         return [pieces]
     centres = np.array([piece.center for piece in pieces])
     axis = int(np.argmax(np.ptp(centres, axis=0)))
@@ -430,7 +614,7 @@ def _nearby_groups(pieces: list[_Piece]) -> list[list[_Piece]]:
     half = len(pieces) // 2
     first = [pieces[i] for i in order[:half]]
     second = [pieces[i] for i in order[half:]]
-    return _nearby_groups(first) + _nearby_groups(second)
+    return _nearby_groups(first, most) + _nearby_groups(second, most)
 
 
 _UNSEEN = _CellBounds(math.nan, math.nan, ())

@@ -1,5 +1,6 @@
-"""Layouts with hundreds of solids: built from compounds within pybullet's limit, stepped in both
-modes with the same collision answers the geometry gives, rendered, and queried exactly."""
+"""Layouts with hundreds of solids: built from compounds within pybullet's limits, stepped in both
+modes with the same collision answers the geometry gives, rendered, and queried exactly (the
+query index answering as the solid bodies do, bit for bit, in one call)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,13 @@ import pytest
 from assets import MAZE_DIR
 from bullet_maze import BulletMazeEnv, load_layout
 from bullet_maze.geometry import clearance, segments_clear
-from bullet_maze.world import COMPOUND_CHILDREN, CONTACT_TOLERANCE
+from bullet_maze.world import (
+    COMPOUND_CHILDREN,
+    CONTACT_TOLERANCE,
+    METRES_PER_UNIT,
+    SAFE_REACH,
+    URDF_CHILDREN,
+)
 
 FOREST = "forest:seed=0,count=250,width=700,height=700,gap=11"
 MAZE = "maze:seed=0,rows=24,cols=24,cell=30"
@@ -39,20 +46,21 @@ def test_thirteen_obstacles_no_longer_crash_the_process(
 
 
 @pytest.mark.parametrize("spec", [FOREST, MAZE])
-def test_hundreds_of_solids_build_into_compounds_of_at_most_sixteen(spec: str) -> None:
+def test_hundreds_of_solids_build_into_compounds_within_pybullets_limits(spec: str) -> None:
     layout = load_layout(spec)
     assert layout.solid_count >= 200
     env = BulletMazeEnv(maze=layout)
     try:
         world, client = env.world, env.client_id
-        children = 0
+        children = []
         for body in world.solid_ids:
             # One visual piece per collision piece (the collision data of a static rigid body
             # cannot be read back).
-            shapes = pb.getVisualShapeData(body, physicsClientId=client)
-            assert 1 <= len(shapes) <= COMPOUND_CHILDREN
-            children += len(shapes)
-        assert children == layout.solid_count + 4  # the arena's four walls
+            children.append(len(pb.getVisualShapeData(body, physicsClientId=client)))
+        assert children[:4] == [1, 1, 1, 1]  # the arena's walls, createCollisionShapeArray's
+        assert all(COMPOUND_CHILDREN < n <= URDF_CHILDREN for n in children[4:])
+        assert sum(children) == layout.solid_count + 4
+        assert len(world.solid_ids) <= 4 + math.ceil(layout.solid_count / URDF_CHILDREN) * 2
     finally:
         env.close()
 
@@ -113,11 +121,12 @@ def test_distance_queries_see_every_nearby_solid() -> None:
         env.close()
 
 
+@pytest.mark.parametrize("mode", ["kinematic", "dynamic"])
 @pytest.mark.parametrize("spec", [FOREST, MAZE])
-def test_dynamic_mode_and_rendering_with_hundreds_of_solids(
-    make_env: Callable[..., gym.Env], spec: str
+def test_both_modes_step_and_render_hundreds_of_solids(
+    make_env: Callable[..., gym.Env], spec: str, mode: str
 ) -> None:
-    env = make_env(maze=spec, mode="dynamic", render_mode="rgb_array")
+    env = make_env(maze=spec, mode=mode, render_mode="rgb_array")
     env.reset(seed=0)
     rng = np.random.default_rng(3)
     collided = 0
@@ -135,3 +144,45 @@ def test_dynamic_mode_and_rendering_with_hundreds_of_solids(
     floor = image[camera.pixel(*layout.goal)]
     assert image[camera.pixel(*solid)].mean() < 200
     assert floor[0] > floor[2] + 40  # the red goal marker
+
+
+@pytest.mark.parametrize("spec", [FOREST, MAZE])
+def test_the_query_index_answers_as_the_solid_bodies_in_one_call(spec: str) -> None:
+    env = BulletMazeEnv(maze=spec)
+    try:
+        world, client = env.world, env.client_id
+        rng = np.random.default_rng(4)
+        calls = [0]
+        original = pb.getClosestPoints
+
+        def counted(*args: object, **kwargs: object) -> object:
+            calls[0] += 1
+            return original(*args, **kwargs)
+
+        for x, y in rng.uniform(-5.0, np.array(env.layout.arena) + 5.0, (400, 2)):
+            reach = float(rng.choice([0.0, 5.0, 20.0, SAFE_REACH]))
+            pb.getClosestPoints = counted
+            try:
+                calls[0] = 0
+                indexed = world._closest(float(x), float(y), reach)
+                assert calls[0] == 1
+            finally:
+                pb.getClosestPoints = original
+            world.place_probe(float(x), float(y))
+            far = (reach + CONTACT_TOLERANCE) * METRES_PER_UNIT
+            direct = [
+                point
+                for body in world.solid_ids
+                for point in pb.getClosestPoints(world.probe_id, body, far, physicsClientId=client)
+            ]
+            # Distance, normal and the point on the solid: the same pieces, the same doubles.
+            assert sorted((p[8], p[7], p[6]) for p in indexed) == sorted(
+                (p[8], p[7], p[6]) for p in direct
+            )
+        index = world._index
+        assert index is not None
+        world.close()
+        assert not pb.isConnected(physicsClientId=index.client)
+        assert world._index is None
+    finally:
+        env.close()
