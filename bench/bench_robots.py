@@ -14,9 +14,17 @@ rounds, interleaved (forwards, then backwards), and reported as the median over 
 ratio or a difference as the median of those measured within each round, so that load that
 slows a whole round cancels out.
 
+Each robot runs at its own physics settings (its robot file's ``[physics]``: the husky's
+compass steps at 60 Hz with 5 solver iterations, the rover's at 120 Hz); the husky's and the
+rover's compass steps are also run at the fine reference (240 Hz, 10 solver iterations), so the
+speed-up of the coarser step is a ratio measured in the same run. Then the faithfulness of the
+coarser step: compass steps from the same states at rest, at the robot's settings and at the
+fine reference, their end poses compared (and the fine reference's own spread: the same steps
+at 50 solver iterations).
+
 Targets (issue 10): the husky's compass step at least 4x the 88 steps/s of the hand-written
-controller it replaces; native actions of the husky and the racecar at least 1,000 steps/s; a
-36-ray lidar adds at most 0.2 ms per step.
+controller it replaces (352); native actions of the husky and the racecar at least 1,000
+steps/s; a 36-ray lidar adds at most 0.2 ms per step. The last table says which are met.
 
 Run: ``python bench/bench_robots.py`` (``--quick`` for a smoke test, ``--rounds``, ``--steps``).
 """
@@ -24,6 +32,7 @@ Run: ``python bench/bench_robots.py`` (``--quick`` for a smoke test, ``--rounds`
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
 import time
 from collections.abc import Callable
@@ -36,19 +45,25 @@ import bullet_maze  # noqa: F401  (registers the ids)
 
 CLOCK = time.process_time
 
-CASES = (
+FINE = {"time_step": 1.0 / 240.0, "solver_iterations": 10}
+"""The fine reference physics: pybullet's default step with the env's solver iterations."""
+
+CASES: tuple[tuple[str, str] | tuple[str, str, dict[str, float]], ...] = (
     ("disc", "compass"),
     ("disc", "continuous"),
     ("husky", "compass"),
+    ("husky", "compass", FINE),
     ("husky", "native"),
     ("husky", "continuous"),
     ("rover", "compass"),
+    ("rover", "compass", FINE),
     ("rover", "native"),
     ("rover", "continuous"),
     ("racecar", "native"),
     ("racecar", "continuous"),
 )
-"""(robot, action set): every action set each robot of the zoo supports."""
+"""(robot, action set[, env arguments]): every action set each robot of the zoo supports, at
+its own physics, and the coarser compass steps again at the fine reference."""
 
 COMPASS_STEPS = {"husky": 0.1, "rover": 0.1}
 """Compass steps of wheeled robots run hundreds of physics steps: this share of ``--steps``."""
@@ -57,10 +72,23 @@ COMPASS_STEPS = {"husky": 0.1, "rover": 0.1}
 class Case:
     """One env with its seeded actions, and its raw-physics twin."""
 
-    def __init__(self, robot: str, actions: str, steps: int, observation: str = "pose") -> None:
+    def __init__(
+        self,
+        robot: str,
+        actions: str,
+        steps: int,
+        observation: str = "pose",
+        params: dict[str, float] | None = None,
+    ) -> None:
         self.env = gym.make(
-            "BulletMaze-v0", robot=robot, mode="dynamic", actions=actions, observation=observation
+            "BulletMaze-v0",
+            robot=robot,
+            mode="dynamic",
+            actions=actions,
+            observation=observation,
+            **(params or {}),
         )
+        self.physics = self.env.unwrapped.physics
         self.env.action_space.seed(0)
         self.actions = [self.env.action_space.sample() for _ in range(steps)]
         self.client = self.env.unwrapped.client_id
@@ -139,27 +167,99 @@ def interleaved(runners: dict[str, Callable[[], float]], rounds: int) -> dict[st
     return rates
 
 
-def speed(steps: int, rounds: int) -> None:
+def _label(physics: object) -> str:
+    time_step, iterations = physics.time_step, physics.solver_iterations  # type: ignore[attr-defined]
+    return f"{1.0 / time_step:.0f} Hz, {iterations} it."
+
+
+def speed(steps: int, rounds: int) -> dict[tuple[str, str, str], float]:
+    """The dynamic table; returns env steps/s by (robot, actions, physics label)."""
     print("## Dynamic mode, per robot and action set (paper maze, random actions)\n")
     print(
-        "| robot | actions | env steps/s | physics steps per env step | raw stepSimulation of "
-        "those steps, steps/s | env time / raw time |"
+        "| robot | actions | physics | env steps/s | physics steps per env step | raw "
+        "stepSimulation of those steps, steps/s | env time / raw time |"
     )
-    print("| --- | --- | --- | --- | --- | --- |")
-    for robot, actions in CASES:
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    results = {}
+    for robot, actions, *rest in CASES:
+        params = rest[0] if rest else None
         n = max(20, int(steps * COMPASS_STEPS.get(robot, 1.0))) if actions == "compass" else steps
         if robot == "disc":
             n = steps
-        case = Case(robot, actions, n)
+        case = Case(robot, actions, n, params=params)
         rates = interleaved({"env": case.run_env, "raw": case.run_raw}, rounds)
         ratio = statistics.median(r / e for e, r in zip(rates["env"], rates["raw"], strict=True))
+        label = _label(case.physics) + (" (fine reference)" if params else "")
+        env_rate = statistics.median(rates["env"])
+        results[(robot, actions, "fine" if params else "own")] = env_rate
         print(
-            f"| {robot} | {actions} | {statistics.median(rates['env']):,.0f} | "
+            f"| {robot} | {actions} | {label} | {env_rate:,.0f} | "
             f"{np.mean(case.physics_steps):.1f} | {statistics.median(rates['raw']):,.0f} | "
             f"{ratio:.2f} |",
             flush=True,
         )
         case.close()
+    for robot in ("husky", "rover"):
+        own, fine = results[(robot, "compass", "own")], results[(robot, "compass", "fine")]
+        print(f"\n{robot} compass at its own physics / at the fine reference: {own / fine:.2f}x")
+    return results
+
+
+def _compass_ends(robot: str, params: dict[str, float], poses: list, actions: list) -> np.ndarray:
+    env = gym.make(
+        "BulletMaze-v0", maze="open", robot=robot, mode="dynamic", noise_variance=0.0, **params
+    )
+    env.reset(seed=0)
+    base = env.unwrapped
+    ends = []
+    for (x, y, heading), action in zip(poses, actions, strict=True):
+        base.robot.place(x, y, heading)
+        base._x, base._y, base._heading = x, y, heading
+        obs, *_ = env.step(action)
+        ends.append(obs[:3])
+    env.close()
+    return np.array(ends)
+
+
+def faithfulness(count: int) -> None:
+    """Compass steps at each robot's own physics against the fine reference, from the same
+    states at rest (see the module docstring)."""
+    print("\n## Faithfulness of the coarser physics (compass steps from the same states at rest)\n")
+    print(
+        "| robot | physics | steps | end position: coarse vs fine, mean / max (units) | "
+        "heading: mean / max (rad) | fine vs 50 iterations (its own spread): position mean / "
+        "max, heading mean / max |"
+    )
+    print("| --- | --- | --- | --- | --- | --- |")
+    for robot in ("husky", "rover"):
+        rng = np.random.default_rng(7)
+        poses = [(*rng.uniform(100.0, 200.0, 2), rng.uniform(-np.pi, np.pi)) for _ in range(count)]
+        actions = [int(a) for a in rng.integers(0, 4, count)]
+        own = gym.make("BulletMaze-v0", robot=robot, mode="dynamic")
+        label = _label(own.unwrapped.physics)
+        own.close()
+        ends = {
+            name: _compass_ends(robot, params, poses, actions)
+            for name, params in (
+                ("own", {}),
+                ("fine", FINE),
+                ("finer", {**FINE, "solver_iterations": 50}),
+            )
+        }
+
+        def compare(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            position = np.hypot(*(a[:, :2] - b[:, :2]).T)
+            heading = np.abs(np.remainder(a[:, 2] - b[:, 2] + np.pi, 2 * np.pi) - np.pi)
+            return position, heading
+
+        p, h = compare(ends["own"], ends["fine"])
+        sp, sh = compare(ends["finer"], ends["fine"])
+        print(
+            f"| {robot} | {label} | {count} | {p.mean():.3f} / {p.max():.3f} | "
+            f"{h.mean():.3f} / {h.max():.3f} | {sp.mean():.3f} / {sp.max():.3f}, "
+            f"{sh.mean():.3f} / {sh.max():.3f} |",
+            flush=True,
+        )
 
 
 def kinematic_speed(steps: int, rounds: int) -> None:
@@ -167,7 +267,9 @@ def kinematic_speed(steps: int, rounds: int) -> None:
     print("| robot | actions | env steps/s |")
     print("| --- | --- | --- |")
     runners = {}
-    for robot, actions in CASES:
+    for robot, actions, *rest in CASES:
+        if rest:  # physics settings do not enter the kinematic mode
+            continue
         env = gym.make("BulletMaze-v0", robot=robot, actions=actions)
         env.action_space.seed(0)
         sequence = [env.action_space.sample() for _ in range(steps)]
@@ -187,10 +289,12 @@ def kinematic_speed(steps: int, rounds: int) -> None:
         print(f"| {name} | {statistics.median(values):,.0f} |")
 
 
-def lidar_cost(steps: int, rounds: int) -> None:
+def lidar_cost(steps: int, rounds: int) -> dict[str, float]:
+    """The lidar table; returns the added milliseconds per step by robot."""
     print("\n## Lidar of 36 rays, added time per step (observation='lidar' vs 'pose')\n")
     print("| robot, actions, mode | pose: us/step | lidar: us/step | added: ms/step |")
     print("| --- | --- | --- | --- |")
+    added_ms: dict[str, float] = {}
     for robot, actions, mode in (
         ("disc", "compass", "kinematic"),
         ("husky", "native", "dynamic"),
@@ -227,6 +331,7 @@ def lidar_cost(steps: int, rounds: int) -> None:
         added = statistics.median(
             (b - a) / 1000.0 for a, b in zip(times["pose"], times["lidar"], strict=True)
         )
+        added_ms[robot] = added
         print(
             f"| {robot}, {actions}, {mode} | {statistics.median(times['pose']):.1f} | "
             f"{statistics.median(times['lidar']):.1f} | {added:.3f} |",
@@ -234,6 +339,25 @@ def lidar_cost(steps: int, rounds: int) -> None:
         )
         for env in envs.values():
             env.close()
+    return added_ms
+
+
+def targets(rates: dict[tuple[str, str, str], float], added: dict[str, float]) -> None:
+    """Issue 10's speed targets against this run's numbers."""
+    print("\n## Targets (issue 10)\n")
+    print("| target | measured | met |")
+    print("| --- | --- | --- |")
+    rows = []
+    if rates:
+        husky = rates[("husky", "compass", "own")]
+        rows.append(("husky compass >= 4 x 88 = 352 env steps/s", f"{husky:,.0f}", husky >= 352))
+        for robot in ("husky", "racecar"):
+            rate = rates[(robot, "native", "own")]
+            rows.append((f"{robot} native >= 1,000 env steps/s", f"{rate:,.0f}", rate >= 1000))
+    for robot, ms in added.items():
+        rows.append((f"36-ray lidar ({robot}) adds <= 0.2 ms/step", f"{ms:.3f} ms", ms <= 0.2))
+    for name, value, met in rows:
+        print(f"| {name} | {value} | {'met' if met else '**missed**'} |")
 
 
 def main() -> None:
@@ -241,15 +365,24 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=2000, help="env steps per measurement")
     parser.add_argument("--rounds", type=int, default=7, help="interleaved rounds")
     parser.add_argument("--quick", action="store_true", help="a smoke test: few steps, 2 rounds")
-    parser.add_argument("--only", choices=["speed", "kinematic", "lidar"], help="one part only")
+    parser.add_argument(
+        "--only", choices=["speed", "faithful", "kinematic", "lidar"], help="one part only"
+    )
     args = parser.parse_args()
     steps, rounds = (200, 2) if args.quick else (args.steps, args.rounds)
+    print(f"load average at start: {' '.join(f'{v:.2f}' for v in os.getloadavg())}\n")
+    rates: dict[tuple[str, str, str], float] = {}
+    added: dict[str, float] = {}
     if args.only in (None, "speed"):
-        speed(steps, rounds)
+        rates = speed(steps, rounds)
+    if args.only in (None, "faithful"):
+        faithfulness(10 if args.quick else 40)
     if args.only in (None, "kinematic"):
         kinematic_speed(steps * 10, rounds)
     if args.only in (None, "lidar"):
-        lidar_cost(steps, rounds)
+        added = lidar_cost(steps, rounds)
+    targets(rates, added)
+    print(f"\nload average at end: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
 
 
 if __name__ == "__main__":

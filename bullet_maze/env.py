@@ -215,7 +215,8 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         `collision_reward`, `step_reward`;
       * `bullet_maze.PhysicsParams` (dynamic mode): `time_step`, `substeps`,
         `solver_iterations`, `revert_on_collision`, `max_turn_substeps`,
-        `max_drive_substeps`;
+        `max_drive_substeps` (a robot file's `[physics]` may set its own `time_step` and
+        `solver_iterations`, per action set: the husky's compass steps run at 60 Hz);
       * `bullet_maze.ActionParams`: `control_period`;
       * `bullet_maze.LidarParams`: `lidar_rays`, `lidar_range` (a robot file may set its own
         defaults).
@@ -319,7 +320,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             if not 0 < robot_radius < math.inf:
                 raise ValueError(f"robot_radius must be a positive number, got {robot_radius!r}")
         spec = resolve_robot(robot)
-        task, physics, action_params, lidar_params, settings = _split_params(params, spec)
+        task, physics, action_params, lidar_params, settings = _split_params(params, spec, actions)
         self.task, self.physics = task, physics
         self.layout = load_layout(maze)
         self.mode = mode
@@ -987,11 +988,12 @@ class BulletMazeEnv(gym.Env[Any, Any]):
 
 
 def _split_params(
-    params: dict[str, Any], spec: RobotSpec
+    params: dict[str, Any], spec: RobotSpec, actions: str = "compass"
 ) -> tuple[TaskParams, PhysicsParams, ActionParams, LidarParams, dict[str, Setting]]:
     """The env's keyword parameters as the dataclasses that hold their defaults, and the
     perturbations given (``bullet_maze.perturbations``): unknown names and booleans given for
-    numbers are refused; the robot file's lidar defaults fill in. A ``noise_variance`` given
+    numbers are refused; the robot file's lidar and physics defaults (its ``[physics]`` for the
+    action set ``actions``) fill in. A ``noise_variance`` given
     as a range is a perturbation; ``TaskParams`` then holds its upper end (which sizes the
     dynamic substeps)."""
     if "max_episode_steps" in params:
@@ -1034,6 +1036,7 @@ def _split_params(
         params = {"lidar_rays": spec.lidar_rays, **params}
     if spec.lidar_range is not None:
         params = {"lidar_range": spec.lidar_range, **params}
+    params = {**spec.physics_defaults(actions), **params}
     built = []
     for cls in PARAMS:
         own = {f.name: params[f.name] for f in dataclasses.fields(cls) if f.name in params}

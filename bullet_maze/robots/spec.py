@@ -30,7 +30,19 @@ radius = "layout"       # optional: "layout" (the maze's robot radius) or maze u
 [sensors]               # optional defaults of this robot's lidar
 lidar_rays = 36
 lidar_range = 100.0     # maze units
+
+[physics]               # optional defaults of the dynamic mode for this robot (env arguments win)
+time_step = 0.0041667   # seconds per physics step, in [1/2000, 1/30] (default: the env's 1/240)
+solver_iterations = 10  # constraint solver iterations per physics step, in [1, 100]
+
+[physics.compass]       # optional: the same keys, with one action set only ("compass",
+time_step = 0.0166667   # "native" or "continuous"); they override [physics]
+solver_iterations = 5
 ```
+
+A robot's physics step enters only its own envs; every step of a coarser one is checked
+against 240 Hz by ``tests/bullet_maze/test_robot_physics.py`` (the zoo's compass steps end
+where the fine step's do, within a stated tolerance).
 
 Every error is a ``ValueError`` (a ``TypeError`` for a wrong type) naming the file and the field.
 """
@@ -61,7 +73,17 @@ MAX_JOINTS_PER_LIST = 16
 """Most joints in one wheel or hinge list."""
 
 _SCHEMA: dict[str, tuple[str, ...]] = {
-    "": ("name", "description", "urdf", "drive", "wheels", "limits", "footprint", "sensors"),
+    "": (
+        "name",
+        "description",
+        "urdf",
+        "drive",
+        "wheels",
+        "limits",
+        "footprint",
+        "sensors",
+        "physics",
+    ),
     "wheels": ("left", "right", "driven", "steering", "free", "radius", "track", "wheelbase"),
     "limits": (
         "max_wheel_speed",
@@ -72,8 +94,22 @@ _SCHEMA: dict[str, tuple[str, ...]] = {
     ),
     "footprint": ("radius",),
     "sensors": ("lidar_rays", "lidar_range"),
+    "physics": ("time_step", "solver_iterations", "compass", "native", "continuous"),
 }
 """Allowed keys of each table."""
+
+ACTION_SET_NAMES = ("compass", "native", "continuous")
+"""The action sets a ``[physics.<name>]`` table may name (``bullet_maze.action_sets``'s)."""
+
+PHYSICS_KEYS = ("time_step", "solver_iterations")
+"""What a ``[physics]`` table sets: the ``PhysicsParams`` fields of that name."""
+
+TIME_STEP_BOUNDS = (1.0 / 2000.0, 1.0 / 30.0)
+"""Seconds: a robot file's physics step (2 kHz to 30 Hz; coarser steps would let a wheeled
+robot at top speed cross a thin wall's contact margin in one step)."""
+
+SOLVER_ITERATION_BOUNDS = (1, 100)
+"""A robot file's constraint solver iterations per physics step."""
 
 _WHEEL_LISTS = {
     "differential": {"left": True, "right": True},
@@ -127,6 +163,15 @@ class RobotSpec:
     """This robot's default number of lidar rays (None: ``LidarParams``'s)."""
     lidar_range: float | None = None
     """This robot's default lidar range in maze units (None: ``LidarParams``'s)."""
+    physics: tuple[tuple[str, str, float | int], ...] = ()
+    """The ``[physics]`` tables as (action set or "" for every set, key, value)."""
+
+    def physics_defaults(self, actions: str) -> dict[str, float | int]:
+        """This robot's dynamic-mode settings with the action set ``actions``: ``[physics]``,
+        then ``[physics.<actions>]`` over it."""
+        defaults = {key: value for where, key, value in self.physics if where == ""}
+        defaults.update({key: value for where, key, value in self.physics if where == actions})
+        return defaults
 
     @property
     def wheels(self) -> tuple[str, ...]:
@@ -259,7 +304,43 @@ def spec_from_dict(data: dict[str, Any], source: str, base: Path) -> RobotSpec:
         if "lidar_rays" not in sensors
         else read.integer(sensors["lidar_rays"], "sensors.lidar_rays"),
         lidar_range=read.optional(sensors.get("lidar_range"), "sensors.lidar_range"),
+        physics=_physics(read, tables["physics"]),
     )
+
+
+def _physics(read: _Reader, table: dict[str, Any]) -> tuple[tuple[str, str, float | int], ...]:
+    """The ``[physics]`` table and its per-action-set tables, checked against their bounds."""
+    settings: list[tuple[str, str, float | int]] = []
+    for where, values, prefix in [("", table, "physics")] + [
+        (name, table[name], f"physics.{name}") for name in ACTION_SET_NAMES if name in table
+    ]:
+        values = read.table(values, prefix)
+        if where:
+            unknown = sorted(set(values) - set(PHYSICS_KEYS))
+            if unknown:
+                raise ValueError(
+                    f"{read.source}: unknown key(s) {unknown} at [{prefix}]; allowed: "
+                    f"{list(PHYSICS_KEYS)}"
+                )
+        if "time_step" in values:
+            low, high = TIME_STEP_BOUNDS
+            step = read.number(values["time_step"], f"{prefix}.time_step", positive=True)
+            if not low <= step <= high:
+                raise ValueError(
+                    f"{read.source}: field '{prefix}.time_step' must be in [{low:g}, {high:g}] "
+                    f"seconds (2 kHz to 30 Hz), got {values['time_step']!r}"
+                )
+            settings.append((where, "time_step", step))
+        if "solver_iterations" in values:
+            low_i, high_i = SOLVER_ITERATION_BOUNDS
+            iterations = read.integer(values["solver_iterations"], f"{prefix}.solver_iterations")
+            if iterations > high_i:
+                raise ValueError(
+                    f"{read.source}: field '{prefix}.solver_iterations' must be in "
+                    f"[{low_i}, {high_i}], got {iterations!r}"
+                )
+            settings.append((where, "solver_iterations", iterations))
+    return tuple(settings)
 
 
 def _urdf_path(text: str, base: Path) -> Path:

@@ -130,6 +130,40 @@ def test_a_robot_file_is_read(write: Callable[[str, str], Path]) -> None:
         (ROBOT_FILE + "[sensors]\nlidar_rays = true\n", TypeError, r"'sensors.lidar_rays' must"),
         (ROBOT_FILE + "[sensors]\nlidar_range = nan\n", ValueError, r"'sensors.lidar_range' mu"),
         ("wheels = 3\n" + ROBOT_FILE.split("[wheels]")[0], TypeError, r"'wheels' must be a tab"),
+        (
+            ROBOT_FILE + "[physics]\ntime_step = 0.1\n",
+            ValueError,
+            r"'physics.time_step' must be in",
+        ),
+        (ROBOT_FILE + "[physics]\ntime_step = 1e-5\n", ValueError, r"'physics.time_step' must b"),
+        (ROBOT_FILE + "[physics]\ntime_step = -0.01\n", ValueError, r"time_step' must be posit"),
+        (ROBOT_FILE + "[physics]\ntime_step = nan\n", ValueError, r"'physics.time_step' must be"),
+        (ROBOT_FILE + '[physics]\ntime_step = "60 Hz"\n', TypeError, r"time_step' must be a num"),
+        (ROBOT_FILE + "[physics]\nsolver_iterations = 0\n", ValueError, r"solver_iterations' mu"),
+        (ROBOT_FILE + "[physics]\nsolver_iterations = 101\n", ValueError, r"in \[1, 100\]"),
+        (ROBOT_FILE + "[physics]\nsolver_iterations = 5.0\n", TypeError, r"must be an integer"),
+        (ROBOT_FILE + "[physics]\nsubsteps = 2\n", ValueError, r"\['substeps'\] at \[physics\]"),
+        (ROBOT_FILE + "[physics]\ncompass = 3\n", TypeError, r"'physics.compass' must be a tab"),
+        (
+            ROBOT_FILE + "[physics.compass]\ntime_step = 1.0\n",
+            ValueError,
+            r"'physics.compass.time_step' must be in \[0.0005, 0.0333333\]",
+        ),
+        (
+            ROBOT_FILE + "[physics.native]\nsolver_iterations = true\n",
+            TypeError,
+            r"'physics.native.solver_iterations' must be an integer",
+        ),
+        (
+            ROBOT_FILE + "[physics.compass]\ncompass = {}\n",
+            ValueError,
+            r"unknown key\(s\) \['compass'\] at \[physics.compass\]",
+        ),
+        (
+            ROBOT_FILE + "[physics.walk]\ntime_step = 0.01\n",
+            ValueError,
+            r"unknown key\(s\) \['walk'\] at \[physics\]",
+        ),
         ('name = ""\n' + ROBOT_FILE, ValueError, r"'name' must not be empty"),
         ("name = 7\n" + ROBOT_FILE, TypeError, r"'name' must be a string"),
         ("urdf = [", ValueError, r"not valid TOML"),
@@ -144,6 +178,22 @@ def test_robot_file_errors_name_the_file_and_the_field(
     with pytest.raises(error, match=message) as caught:
         load_robot_spec(path)
     assert "bad.toml" in str(caught.value)
+
+
+def test_a_robot_files_physics_enter_its_dynamic_envs(write: Callable[[str, str], Path]) -> None:
+    write("cart.urdf", cart_urdf())
+    text = ROBOT_FILE + "[physics]\nsolver_iterations = 20\n[physics.native]\ntime_step = 0.01\n"
+    path = write("cart.toml", text)
+    spec = load_robot_spec(path)
+    assert spec.physics_defaults("native") == {"solver_iterations": 20, "time_step": 0.01}
+    assert spec.physics_defaults("compass") == {"solver_iterations": 20}
+    env = BulletMazeEnv(maze="open", robot=str(path), mode="dynamic", actions="native")
+    try:
+        assert (env.physics.time_step, env.physics.solver_iterations) == (0.01, 20)
+        env.reset(seed=0)
+        env.step(0)  # a native command of 0.1 s: 10 physics steps of 0.01 s
+    finally:
+        env.close()
 
 
 def test_robot_file_bytes_and_size_are_checked(tmp_path: Path) -> None:

@@ -1,0 +1,109 @@
+"""A robot's own physics step (``[physics]`` of its robot file) is faithful: the zoo's compass
+steps at their coarser step end where the same steps at 240 Hz do.
+
+The check is a convergence check, from the same states: each compass step starts with the robot
+at rest (where every compass step ends) at the same seeded pose, once at the robot's physics
+settings and once at the fine reference, 240 Hz with the env's 10 solver iterations, and their
+end poses are compared (``TOLERANCES``). The same steps at 240 Hz with 50 solver iterations
+measure the fine reference's own spread: the husky's end poses spread 0.04-0.10 units on
+average (at most 0.19) there and differ from its 60 Hz ones by 0.07-0.13 (at most 0.29) on
+six seeds; the rover, whose casters bounce at any step, spreads 0.19-0.35 (at most 0.87) at
+240 Hz and differs from 120 Hz by 0.27-0.38 (at most 0.95), so its mean is also bounded by its
+own spread.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+from bullet_maze.robots import resolve_robot
+
+FINE = {"time_step": 1.0 / 240.0, "solver_iterations": 10}
+"""The fine reference: pybullet's default step with the env's solver iterations."""
+FINER = {"time_step": 1.0 / 240.0, "solver_iterations": 50}
+"""The fine reference's own spread: the same step, solved to pybullet's default iterations."""
+POSES = 10
+"""Compass steps compared per robot."""
+TOLERANCES = {"husky": (0.2, 0.5, 0.1, 0.3), "rover": (0.5, 1.2, 0.3, 0.8)}
+"""Coarse against fine, per robot: mean and largest end-position difference (maze units; the
+step is 5), mean and largest heading difference (radians)."""
+
+
+def _end_poses(
+    make_env: Callable[..., gym.Env], robot: str, settings: dict[str, float | int], seed: int
+) -> np.ndarray:
+    env = make_env(maze="open", robot=robot, mode="dynamic", noise_variance=0.0, **settings)
+    env.reset(seed=0)
+    base = env.unwrapped
+    rng = np.random.default_rng(seed)
+    ends = []
+    for _ in range(POSES):
+        x, y = rng.uniform(100.0, 200.0, 2)
+        heading = rng.uniform(-math.pi, math.pi)
+        action = int(rng.integers(4))
+        base.robot.place(x, y, heading)
+        base._x, base._y, base._heading = x, y, heading  # the env's copy of the pose
+        obs, _, _, _, info = env.step(action)
+        assert not info["collision"]
+        ends.append([*obs[:3], x, y])
+    return np.array(ends)
+
+
+def _differences(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    position = np.hypot(*(a[:, :2] - b[:, :2]).T)
+    heading = np.abs(np.remainder(a[:, 2] - b[:, 2] + math.pi, 2 * math.pi) - math.pi)
+    return position, heading
+
+
+def test_robot_files_set_their_physics_per_action_set(make_env: Callable[..., gym.Env]) -> None:
+    husky = resolve_robot("husky")
+    assert husky.physics_defaults("compass") == {
+        "time_step": pytest.approx(1 / 60),
+        "solver_iterations": 5,
+    }
+    assert husky.physics_defaults("native") == {}
+    assert resolve_robot("rover").physics_defaults("compass") == {
+        "time_step": pytest.approx(1 / 120)
+    }
+    # The disc (the paper's robot) and the racecar keep the env's physics.
+    for name in ("disc", "racecar"):
+        assert resolve_robot(name).physics == ()
+    env = make_env(robot="husky", mode="dynamic")
+    assert env.unwrapped.physics.time_step == pytest.approx(1 / 60)
+    assert env.unwrapped.physics.solver_iterations == 5
+    native = make_env(robot="husky", mode="dynamic", actions="native")
+    assert native.unwrapped.physics.time_step == pytest.approx(1 / 240)
+    assert native.unwrapped.physics.solver_iterations == 10
+    # An env argument wins over the robot file.
+    mine = make_env(robot="husky", mode="dynamic", time_step=1 / 120)
+    assert mine.unwrapped.physics.time_step == pytest.approx(1 / 120)
+    assert mine.unwrapped.physics.solver_iterations == 5
+
+
+@pytest.mark.parametrize(("robot", "seed"), [("husky", 11), ("rover", 12)])
+def test_coarse_compass_steps_end_where_fine_steps_do(
+    make_env: Callable[..., gym.Env], robot: str, seed: int
+) -> None:
+    own = resolve_robot(robot).physics_defaults("compass")
+    assert own["time_step"] > FINE["time_step"]  # a coarser step is what is checked
+    coarse = _end_poses(make_env, robot, {}, seed)
+    fine = _end_poses(make_env, robot, FINE, seed)
+    finer = _end_poses(make_env, robot, FINER, seed)
+    position, heading = _differences(coarse, fine)
+    spread, spread_heading = _differences(finer, fine)
+    mean, most, mean_heading, most_heading = TOLERANCES[robot]
+    assert position.mean() <= mean
+    assert position.max() <= most
+    assert heading.mean() <= mean_heading
+    assert heading.max() <= most_heading
+    # No worse than the fine step's own spread allows (1.5 times it, and 0.1 units).
+    assert position.mean() <= max(mean / 2.0, 1.5 * spread.mean() + 0.1)
+    assert heading.mean() <= max(mean_heading / 2.0, 1.5 * spread_heading.mean() + 0.05)
+    # The coarse steps are steps: they moved their length (5 units) and stopped near it.
+    moved = np.hypot(*(coarse[:, :2] - coarse[:, 3:5]).T)
+    assert np.all(np.abs(moved - 5.0) < 1.0)
