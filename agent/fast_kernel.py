@@ -774,10 +774,7 @@ def choose_split(leaf, slot, st, fs, lf, bufi, buff, bctr):
         m2, v2 = column_stats(neg, c)
         gap = abs(m1 - m2)
         spread = math.sqrt(v1 / n1 + v2 / n2)
-        if spread > 0.0:
-            t = gap / spread
-        else:
-            t = math.inf if gap > 0 else 0.0
+        t = gap / spread if spread > 0.0 else (math.inf if gap > 0 else 0.0)
         if c == 0:
             raw0 = t
         else:
@@ -814,8 +811,26 @@ def choose_split(leaf, slot, st, fs, lf, bufi, buff, bctr):
 
 
 @njit(cache=True)
-def split_leaf(leaf, dim, value, st, fs, li, lf, q, visits, counts, fifo, bufi, buff, bctr,
-               bsum, free, dirty, log):
+def split_leaf(
+    leaf,
+    dim,
+    value,
+    st,
+    fs,
+    li,
+    lf,
+    q,
+    visits,
+    counts,
+    fifo,
+    bufi,
+    buff,
+    bctr,
+    bsum,
+    free,
+    dirty,
+    log,
+):
     """``PartitionTree.split`` with the children's samples, ``SMDPAgent._grow`` and the
     strategy's ``on_split``. Returns the slot of a child buffer whose ring wrapped (the driver
     must set its exact sums), else -1."""
@@ -953,8 +968,9 @@ def split_leaf(leaf, dim, value, st, fs, li, lf, q, visits, counts, fifo, bufi, 
 
 
 @njit(cache=True)
-def record(st, fs, li, lf, q, visits, counts, fifo, xs, errs, bufi, buff, bctr, bsum, free,
-           dirty, log):
+def record(
+    st, fs, li, lf, q, visits, counts, fifo, xs, errs, bufi, buff, bctr, bsum, free, dirty, log
+):
     """``partition.record(leaf, xs[start:end], errs[:end - start])`` and, after a split,
     ``SMDPAgent._grow``; resumable (``st[I_REC_STAGE]``). Returns 0 when done (``st[I_SPLIT]``
     says whether it split), EV_SUMS when NumPy's exact sums of ``st[I_SUM_SLOT]`` are needed,
@@ -1005,8 +1021,24 @@ def record(st, fs, li, lf, q, visits, counts, fifo, xs, errs, bufi, buff, bctr, 
             return EV_PY_TAIL
         st[I_SPLIT] = 1
         pending = split_leaf(
-            leaf, dim, value, st, fs, li, lf, q, visits, counts, fifo, bufi, buff, bctr, bsum,
-            free, dirty, log,
+            leaf,
+            dim,
+            value,
+            st,
+            fs,
+            li,
+            lf,
+            q,
+            visits,
+            counts,
+            fifo,
+            bufi,
+            buff,
+            bctr,
+            bsum,
+            free,
+            dirty,
+            log,
         )
         if pending >= 0:
             st[I_REC_STAGE] = 2
@@ -1469,8 +1501,23 @@ def run_episode(
                 st[I_PHASE] = PH_SELECT
         elif phase == PH_RECORD:
             code = record(
-                st, fs, li, lf, q, visits, counts, fifo, xs, errs, bufi, buff, bctr, bsum, free,
-                dirty, log,
+                st,
+                fs,
+                li,
+                lf,
+                q,
+                visits,
+                counts,
+                fifo,
+                xs,
+                errs,
+                bufi,
+                buff,
+                bctr,
+                bsum,
+                free,
+                dirty,
+                log,
             )
             if code != 0:
                 return code

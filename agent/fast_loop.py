@@ -53,7 +53,7 @@ from typing import Any
 import numpy as np
 from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker, TimeLimit
 
-from agent import smdp
+from agent import smdp, split_statistics
 from agent.config import TreeConfig
 from agent.episode_stats import EpisodeStats
 from agent.error_buffer import ErrorBuffer
@@ -210,6 +210,15 @@ def _agent_functions() -> dict[str, Any]:
         "UniformGrid.leaf_of": UniformGrid.leaf_of,
         "ErrorBuffer.__init__": ErrorBuffer.__init__,
         "ErrorBuffer.add": ErrorBuffer.add,
+        "ErrorBuffer._exact_sums": ErrorBuffer._exact_sums,
+        "ErrorBuffer.mean_variance": ErrorBuffer.mean_variance,
+        "ErrorBuffer.clear": ErrorBuffer.clear,
+        "ErrorBuffer.arrays": ErrorBuffer.arrays,
+        "should_split": split_statistics.should_split,
+        "t_statistics": split_statistics.t_statistics,
+        "density_crossing": split_statistics.density_crossing,
+        "split_point": split_statistics.split_point,
+        "choose_split": split_statistics.choose_split,
         "UniformStream.random": UniformStream.random,
         "epoch_returns": smdp.epoch_returns,
         "leaf_update": smdp.leaf_update,
@@ -268,6 +277,15 @@ FINGERPRINTS = {
     "UniformGrid.leaf_of": "d0472db7cca8f40e",
     "ErrorBuffer.__init__": "9ea1b2a8897928d2",
     "ErrorBuffer.add": "60eb94099d6ba852",
+    "ErrorBuffer._exact_sums": "449e23fee4655dca",
+    "ErrorBuffer.mean_variance": "ccbf03f39d469108",
+    "ErrorBuffer.clear": "971d49be875d6831",
+    "ErrorBuffer.arrays": "98183933f81869fd",
+    "should_split": "f92a49ed5e2bc1b4",
+    "t_statistics": "4f6215544c013169",
+    "density_crossing": "262ff1e7150804f2",
+    "split_point": "3339785ebec57ee4",
+    "choose_split": "74c2c03de5123666",
     "UniformStream.random": "8991e422a2b3f799",
     "epoch_returns": "8f2bfb5777511e81",
     "leaf_update": "1aa0af332e5cc0c6",
@@ -643,6 +661,9 @@ class FastRunner:
         """CPU seconds spent in the env's Python code (sweeps, ``env.step``) once a benchmark
         sets this to 0.0 (``bench/bench_agent.py``); None: not measured."""
         self._pending = False
+        self.sums_events = [0, 0, 0]
+        """Rings the kernel filled (exact sums asked of NumPy), for the tests: a leaf's own
+        (index 0) and a child's at a split (index 2)."""
         self.lazy = True
         """Leave the Python objects behind the kernel after an episode until :meth:`sync`
         (``learn`` calls it before each callback and at its end); False: sync after each."""
@@ -679,6 +700,7 @@ class FastRunner:
                     self._sweep()
                 elif event == k.EV_SUMS:
                     self._exact_sums()
+                    self.sums_events[int(st[k.I_REC_STAGE])] += 1
                 elif event == k.EV_PY_STEP:
                     self._python_step()
                 elif event == k.EV_RECORD:
