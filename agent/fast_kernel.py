@@ -1524,3 +1524,88 @@ def run_episode(
             st[I_PHASE] = PH_END_RESUME
         else:
             return EV_DONE
+
+
+# -- One call, few arguments ----------------------------------------------------------------
+
+POOLED_INT = (
+    "li",
+    "visits",
+    "counts",
+    "fifo",
+    "grid_i",
+    "held",
+    "bctr",
+    "free",
+    "dirty",
+    "log",
+    "cells",
+    "bounds_r",
+)
+POOLED_FLOAT = (
+    "lf",
+    "q",
+    "ubuf",
+    "grid_f",
+    "xs",
+    "rs",
+    "errs",
+    "bsum",
+    "moves",
+    "noise",
+    "bounds_c",
+    "pieces",
+)
+"""The arrays :func:`run_pooled` takes as views of two pools (row i of ``lay`` for the i-th of
+POOLED_INT + POOLED_FLOAT: offset, rows, columns), in this order: numba's dispatch costs per
+array argument, and the kernel returns to Python for every pybullet sweep."""
+
+
+@njit(cache=True, inline="always")
+def view1(pool, lay, i):
+    o = lay[i, 0]
+    return pool[o : o + lay[i, 1]]
+
+
+@njit(cache=True, inline="always")
+def view2(pool, lay, i):
+    o = lay[i, 0]
+    rows = lay[i, 1]
+    columns = lay[i, 2]
+    return pool[o : o + rows * columns].reshape((rows, columns))
+
+
+@njit(cache=True)
+def run_pooled(st, fs, ipool, fpool, lay, bufi, buff):
+    """:func:`run_episode` on the pools' views."""
+    f = len(POOLED_INT)
+    return run_episode(
+        st,
+        fs,
+        view2(ipool, lay, 0),  # li
+        view2(fpool, lay, f),  # lf
+        view2(fpool, lay, f + 1),  # q
+        view2(ipool, lay, 1),  # visits
+        view2(ipool, lay, 2),  # counts
+        view2(ipool, lay, 3),  # fifo
+        view1(fpool, lay, f + 2),  # ubuf
+        view2(fpool, lay, f + 3),  # grid_f
+        view2(ipool, lay, 4),  # grid_i
+        view2(fpool, lay, f + 4),  # xs
+        view1(fpool, lay, f + 5),  # rs
+        view1(ipool, lay, 5),  # held
+        view1(fpool, lay, f + 6),  # errs
+        bufi,
+        buff,
+        view2(ipool, lay, 6),  # bctr
+        view2(fpool, lay, f + 7),  # bsum
+        view1(ipool, lay, 7),  # free
+        view1(ipool, lay, 8),  # dirty
+        view2(ipool, lay, 9),  # log
+        view2(fpool, lay, f + 8),  # moves
+        view1(fpool, lay, f + 9),  # noise
+        view2(ipool, lay, 10),  # cells
+        view2(fpool, lay, f + 10),  # bounds_c
+        view2(ipool, lay, 11),  # bounds_r
+        view2(fpool, lay, f + 11),  # pieces
+    )

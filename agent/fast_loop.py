@@ -520,8 +520,9 @@ def load_kernel() -> Any:
             from agent import fast_kernel
 
             runner = FastRunner.__new__(FastRunner)
+            runner.k = fast_kernel
             runner._dummy_arrays(fast_kernel)
-            event = fast_kernel.run_episode(*runner._args())
+            event = fast_kernel.run_pooled(*runner._args())
             if event != fast_kernel.EV_DONE:
                 raise RuntimeError(f"the kernel's warm-up returned event {event}")
             _kernel = fast_kernel
@@ -689,7 +690,7 @@ class FastRunner:
         fs[k.F_GX], fs[k.F_GY] = core.goal
         fs[k.F_GR] = core.goal_radius
         st[k.I_PHASE] = k.PH_START
-        run = k.run_episode
+        run = k.run_pooled
         self._pending = True
         try:
             while True:
@@ -859,11 +860,16 @@ class FastRunner:
         would, after the draws of this choice not yet committed."""
         k, st = self.k, self.st
         stream = self.agent.uniform
-        tail = self.ubuf[int(st[k.I_UPOS]) : int(st[k.I_ULEN])]
+        tail = self.ubuf[int(st[k.I_UPOS]) : int(st[k.I_ULEN])].copy()
         block = stream.generator.random(stream.block)
-        self.ubuf = np.ascontiguousarray(np.concatenate((tail, block)))
+        size = tail.shape[0] + block.shape[0]
+        if size <= self.ubuf.shape[0]:  # in place: the pools stay as they are
+            self.ubuf[: tail.shape[0]] = tail
+            self.ubuf[tail.shape[0] : size] = block
+        else:
+            self.ubuf = np.concatenate((tail, block, np.zeros(64)))
         st[k.I_UPOS] = 0
-        st[k.I_ULEN] = self.ubuf.shape[0]
+        st[k.I_ULEN] = size
         self.ubase = tail.shape[0]
         self.new_block = True
 
@@ -883,7 +889,11 @@ class FastRunner:
         fs[k.F_EX], fs[k.F_EY] = core.position
         if core.noise is not self._noise_list:
             self._noise_list = core.noise
-            self.noise = np.array(core.noise if core.noise else [0.0, 0.0], dtype=np.float64)
+            values = core.noise if core.noise else [0.0, 0.0]
+            if len(values) <= self.noise.shape[0]:  # in place: the pools stay as they are
+                self.noise[: len(values)] = values
+            else:
+                self.noise = np.array(values, dtype=np.float64)
             st[k.I_NOISE_LEN] = len(core.noise)
         st[k.I_NOISE] = core.noise_index
         fs[k.F_SX], fs[k.F_SY], fs[k.F_SR] = core.safe_ball
@@ -927,8 +937,8 @@ class FastRunner:
             first = self.npieces
             if first + len(pieces) > self.pieces.shape[0]:
                 self.pieces = _resized(self.pieces, 2 * (first + len(pieces)))
-            for j, piece in enumerate(pieces):
-                self.pieces[first + j] = piece
+            if pieces:
+                self.pieces[first : first + len(pieces)] = pieces
             self.bounds_c[index] = (bounds.cx, bounds.cy)
             self.bounds_r[index] = (first, len(pieces))
             self.npieces = first + len(pieces)
@@ -1043,9 +1053,10 @@ class FastRunner:
         self._import_all()
 
         stream = agent.uniform
-        self.ubuf = np.array(stream._buffer, dtype=np.float64)
+        self.ubuf = np.zeros(max(len(stream._buffer), stream.block) + 64, dtype=np.float64)
+        self.ubuf[: len(stream._buffer)] = stream._buffer
         st[k.I_UPOS] = stream._position
-        st[k.I_ULEN] = self.ubuf.shape[0]
+        st[k.I_ULEN] = len(stream._buffer)
         self.ubase = 0
         self.new_block = False
 
@@ -1288,7 +1299,7 @@ class FastRunner:
             st[k.I_EXPLORED_DIRTY] = st[k.I_BASE_SELECTED] = 0
         stream = self.agent.uniform
         if self.new_block:
-            stream._buffer = self.ubuf[self.ubase :].tolist()
+            stream._buffer = self.ubuf[self.ubase : int(st[k.I_ULEN])].tolist()
             self.new_block = False
         stream._position = int(st[k.I_UPOS]) - self.ubase
 
@@ -1406,7 +1417,34 @@ class FastRunner:
         return self._argtuple
 
     def _build_args(self) -> tuple[Any, ...]:
-        return tuple(getattr(self, name) for name in _ARGUMENT_ORDER)
+        """``fast_kernel.run_pooled``'s arguments: the arrays of POOLED_INT and POOLED_FLOAT
+        copied into two pools (the attributes become views of them), their layout, and the
+        arrays that stay apart (the state vectors and the buffers' storage, the largest)."""
+        k = self.k
+        names = (*k.POOLED_INT, *k.POOLED_FLOAT)
+        lay = np.zeros((len(names), 3), dtype=np.int64)
+        sizes = {np.dtype(np.int64): 0, np.dtype(np.float64): 0}
+        arrays = [getattr(self, name) for name in names]
+        for i, array in enumerate(arrays):
+            rows = array.shape[0]
+            columns = array.shape[1] if array.ndim == 2 else 1
+            lay[i] = (sizes[array.dtype], rows, columns)
+            sizes[array.dtype] += rows * columns
+        pools = {dtype: np.zeros(max(size, 1), dtype=dtype) for dtype, size in sizes.items()}
+        for i, (name, array) in enumerate(zip(names, arrays, strict=True)):
+            start, size = int(lay[i, 0]), array.size
+            view = pools[array.dtype][start : start + size].reshape(array.shape)
+            view[...] = array
+            object.__setattr__(self, name, view)
+        return (
+            self.st,
+            self.fs,
+            pools[np.dtype(np.int64)],
+            pools[np.dtype(np.float64)],
+            lay,
+            self.bufi,
+            self.buff,
+        )
 
     def _dummy_arrays(self, k: Any) -> None:
         """Arrays of the kernel's types for a call that returns at once (the warm-up)."""
@@ -1434,39 +1472,6 @@ class FastRunner:
         self.bounds_c = np.zeros((1, 2), dtype=np.float64)
         self.bounds_r = np.zeros((1, 2), dtype=np.int64)
         self.pieces = np.zeros((1, 3), dtype=np.float64)
-
-
-_ARGUMENT_ORDER = [
-    "st",
-    "fs",
-    "li",
-    "lf",
-    "q",
-    "visits",
-    "counts",
-    "fifo",
-    "ubuf",
-    "grid_f",
-    "grid_i",
-    "xs",
-    "rs",
-    "held",
-    "errs",
-    "bufi",
-    "buff",
-    "bctr",
-    "bsum",
-    "free",
-    "dirty",
-    "log",
-    "moves",
-    "noise",
-    "cells",
-    "bounds_c",
-    "bounds_r",
-    "pieces",
-]
-"""``fast_kernel.run_episode``'s parameters."""
 
 
 def _resized(array: np.ndarray, rows: int) -> np.ndarray:
