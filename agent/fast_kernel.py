@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 # Events (return values of run_episode).
@@ -31,6 +32,8 @@ EV_UNIFORM = 3
 EV_GROW = 4
 EV_POOL = 5
 EV_SWEEP = 6
+EV_SUMS = 7
+EV_PY_TAIL = 8
 
 # Phases (st[I_PHASE]).
 PH_START = 0
@@ -42,6 +45,7 @@ PH_END_LOOP = 5
 PH_END_RESUME = 6
 PH_DONE = 7
 PH_SWEEP_RESULT = 8
+PH_RECORD = 9
 
 # Integer state st[...]: run configuration first, then the episode's state.
 C_KIND = 0  # 0 tree, 1 grid
@@ -106,7 +110,23 @@ I_EXPLORED_DIRTY = 60
 I_KERNEL_STEPS = 61
 I_PY_STEPS = 62
 I_BODY_MOVED = 63
-N_INT = 64
+C_KREC = 64  # the split test runs here (else in Python, EV_RECORD)
+C_MAX_LEAVES = 65
+C_MIDPOINT = 66  # split_point "midpoint"
+C_ROOT_NORM = 67  # range_normalization "root"
+C_INHERIT_SAMPLES = 68
+C_INHERIT_Q = 69
+C_RESET_COUNTS = 70
+C_STRATEGY_INHERIT = 71  # AdaptiveEpsilon / VDBE inherit_on_split
+C_TABU_INHERIT = 72  # Tabu on_split "inherit"
+I_NLEAVES = 73
+I_NIDS = 74
+I_NLOG = 75
+I_REC_STAGE = 76
+I_ADD_K = 77
+I_SUM_SLOT = 78
+I_SPLIT_DIM = 79
+N_INT = 96
 
 # Float state fs[...].
 F_X = 0
@@ -141,7 +161,15 @@ F_SW_X0 = 28
 F_SW_Y0 = 29
 F_SW_X1 = 30
 F_SW_Y1 = 31
-N_FLOAT = 36
+F_RW0 = 32  # the root's width per dimension
+F_RW1 = 33
+F_MIN_FRACTION = 34
+F_MAX_ABS_MEAN = 35
+F_MIN_VARIANCE = 36
+F_MIN_T = 37
+F_Q_INIT = 38
+F_SPLIT_VALUE = 39
+N_FLOAT = 48
 
 # Columns of the per-id integer table li[id, ...] and float table lf[id, ...].
 L_DIM = 0
@@ -151,11 +179,32 @@ L_COUNTS_HAS = 3
 L_TABU_MASK = 4
 L_SLOT = 5
 L_DIRTY = 6
-L_NEW = 7  # the kernel made this id's first strategy entry or buffer
-N_LI = 8
+L_PARENT = 7
+L_DEPTH = 8
+N_LI = 10
 LF_THRESHOLD = 0
 LF_EPS = 1
-N_LF = 2
+LF_LO0 = 2
+LF_LO1 = 3
+LF_HI0 = 4
+LF_HI1 = 5
+N_LF = 6
+
+# Columns of bctr[slot, ...]: the buffer's counters and the stretch of storage written since the
+# driver last copied it into the ErrorBuffer.
+B_COUNT = 0
+B_HEAD = 1
+B_LOW = 2
+B_HIGH = 3
+N_BCTR = 4
+
+# Kinds of log[k, 0]: what the driver must replay, in order, into the Python dicts.
+LOG_BUFFER = 0  # partition._buffers[id] created
+LOG_COUNTS = 1  # AdaptiveEpsilon._counts[id] created
+LOG_EPS = 2  # _epsilon[id] created
+LOG_SPLIT = 3  # id split: popped from every dict
+LOG_ROOM = 8
+"""Log entries one end_epoch and its record can add at most."""
 
 S_EPSILON = 0
 S_ADAPTIVE = 1
@@ -413,6 +462,592 @@ def tabu_trim(st, li, fifo):
 
 
 @njit(cache=True, inline="always")
+def add_log(kind, leaf, st, log):
+    k = st[I_NLOG]
+    log[k, 0] = kind
+    log[k, 1] = leaf
+    st[I_NLOG] = k + 1
+
+
+@njit(cache=True, inline="always")
+def alloc_slot(leaf, st, li, bufi, buff, bctr, bsum, free, log):
+    """``partition._buffers[leaf] = ErrorBuffer(dims, capacity)``: a zeroed slot."""
+    st[I_NFREE] -= 1
+    slot = free[st[I_NFREE]]
+    li[leaf, L_SLOT] = slot
+    bufi[slot, :] = 0.0
+    buff[slot, :] = 0.0
+    bctr[slot, B_COUNT] = 0
+    bctr[slot, B_HEAD] = 0
+    bctr[slot, B_LOW] = buff.shape[1]
+    bctr[slot, B_HIGH] = 0
+    bsum[slot, 0] = 0.0
+    bsum[slot, 1] = 0.0
+    add_log(LOG_BUFFER, leaf, st, log)
+    return slot
+
+
+@njit(cache=True, inline="always")
+def free_slot(leaf, st, li, free):
+    slot = li[leaf, L_SLOT]
+    if slot >= 0:
+        free[st[I_NFREE]] = slot
+        st[I_NFREE] += 1
+        li[leaf, L_SLOT] = -1
+
+
+@njit(cache=True, inline="always")
+def touched(slot, low, high, bctr):
+    if low < bctr[slot, B_LOW]:
+        bctr[slot, B_LOW] = low
+    if high > bctr[slot, B_HIGH]:
+        bctr[slot, B_HIGH] = high
+
+
+@njit(cache=True)
+def buffer_add(slot, xs, x_rows, x_start, es, e_start, k, n, bufi, buff, bctr, bsum):
+    """``ErrorBuffer.add`` of the pairs (xs[x_rows[x_start + i]], es[e_start + i]), i < n, from
+    the k-th on (``x_rows`` None: rows x_start + i). Returns n when done, or -(i + 1) when the
+    ring wrapped after pair i: the driver must set the exact sums (``ErrorBuffer._exact_sums``,
+    NumPy's) in ``bsum[slot]`` before the call from pair i + 1 on."""
+    capacity = buff.shape[1]
+    count = bctr[slot, B_COUNT]
+    head = bctr[slot, B_HEAD]
+    if k == 0 and head + n < capacity and count + n <= capacity:
+        s = 0.0
+        s2 = 0.0
+        for i in range(n):
+            row = x_start + i if x_rows is None else x_rows[x_start + i]
+            e = es[e_start + i]
+            bufi[slot, 2 * (head + i)] = xs[row, 0]
+            bufi[slot, 2 * (head + i) + 1] = xs[row, 1]
+            buff[slot, head + i] = e
+            s += e
+        for i in range(n):
+            e = es[e_start + i]
+            s2 += e * e
+        touched(slot, head, head + n, bctr)
+        bctr[slot, B_HEAD] = head + n
+        bctr[slot, B_COUNT] = count + n
+        bsum[slot, 0] = bsum[slot, 0] + s
+        bsum[slot, 1] = bsum[slot, 1] + s2
+        return n
+    total = bsum[slot, 0]
+    total_sq = bsum[slot, 1]
+    i = k
+    while i < n:
+        row = x_start + i if x_rows is None else x_rows[x_start + i]
+        e = es[e_start + i]
+        bufi[slot, 2 * head] = xs[row, 0]
+        bufi[slot, 2 * head + 1] = xs[row, 1]
+        touched(slot, head, head + 1, bctr)
+        if count == capacity:
+            old = buff[slot, head]
+            total -= old
+            total_sq -= old * old
+        else:
+            count += 1
+        buff[slot, head] = e
+        total += e
+        total_sq += e * e
+        head += 1
+        i += 1
+        if head == capacity:
+            bctr[slot, B_HEAD] = 0
+            bctr[slot, B_COUNT] = count
+            return -i
+    bctr[slot, B_HEAD] = head
+    bctr[slot, B_COUNT] = count
+    bsum[slot, 0] = total
+    bsum[slot, 1] = total_sq
+    return n
+
+
+@njit(cache=True, inline="always")
+def pairwise_block(a, first, n, step):
+    """NumPy's ``pairwise_sum`` for n <= 128 (one block: eight accumulators)."""
+    if n < 8:
+        res = 0.0
+        for i in range(n):
+            res += a[first + i * step]
+        return res
+    r0 = a[first]
+    r1 = a[first + step]
+    r2 = a[first + 2 * step]
+    r3 = a[first + 3 * step]
+    r4 = a[first + 4 * step]
+    r5 = a[first + 5 * step]
+    r6 = a[first + 6 * step]
+    r7 = a[first + 7 * step]
+    i = 8
+    m = n - n % 8
+    while i < m:
+        b = first + i * step
+        r0 += a[b]
+        r1 += a[b + step]
+        r2 += a[b + 2 * step]
+        r3 += a[b + 3 * step]
+        r4 += a[b + 4 * step]
+        r5 += a[b + 5 * step]
+        r6 += a[b + 6 * step]
+        r7 += a[b + 7 * step]
+        i += 8
+    res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+    while i < n:
+        res += a[first + i * step]
+        i += 1
+    return res
+
+
+@njit(cache=True)
+def pairwise_sum(a, first, n, step):
+    """NumPy's ``pairwise_sum`` (``add.reduce`` of a 1-d float64 array) of a[first + i * step]:
+    blocks of at most 128, halves rounded down to a multiple of 8, summed as NumPy's recursion
+    sums them (here with an explicit stack: numba cannot cache recursive functions)."""
+    if n <= 128:
+        return pairwise_block(a, first, n, step)
+    starts = np.empty(64, dtype=np.int64)
+    sizes = np.empty(64, dtype=np.int64)
+    stages = np.empty(64, dtype=np.int64)
+    values = np.empty(64, dtype=np.float64)
+    top = 1
+    nv = 0
+    starts[0] = first
+    sizes[0] = n
+    stages[0] = 0
+    while top > 0:
+        j = top - 1
+        m = sizes[j]
+        if m <= 128:
+            values[nv] = pairwise_block(a, starts[j], m, step)
+            nv += 1
+            top -= 1
+            continue
+        half = m // 2
+        half -= half % 8
+        if stages[j] == 0:
+            stages[j] = 1
+            starts[top] = starts[j]
+            sizes[top] = half
+            stages[top] = 0
+            top += 1
+        elif stages[j] == 1:
+            stages[j] = 2
+            starts[top] = starts[j] + half * step
+            sizes[top] = m - half
+            stages[top] = 0
+            top += 1
+        else:
+            values[nv - 2] = values[nv - 2] + values[nv - 1]
+            nv -= 1
+            top -= 1
+    return values[0]
+
+
+@njit(cache=True)
+def column_stats(group, c):
+    """``group.mean(axis=0)[c]`` and ``group.var(axis=0, ddof=1)[c]`` of an (n, 2) C array:
+    NumPy reduces axis 0 of such an array row by row (sequential sums)."""
+    n = group.shape[0]
+    s = 0.0
+    for i in range(n):
+        s += group[i, c]
+    mean = s / n
+    ss = 0.0
+    for i in range(n):
+        x = group[i, c] - mean
+        ss += x * x
+    return mean, ss / (n - 1)
+
+
+@njit(cache=True)
+def vector_stats(group, c):
+    """``float(v.mean())`` and ``float(v.var(ddof=1))`` of the column view v = group[:, c]
+    (pairwise sums: the strided view, then its contiguous squared deviations)."""
+    n = group.shape[0]
+    flat = group.reshape(-1)
+    mean = (0.0 + pairwise_sum(flat, c, n, 2)) / n
+    squares = np.empty(n, dtype=np.float64)
+    for i in range(n):
+        x = flat[c + 2 * i] - mean
+        squares[i] = x * x
+    return mean, (0.0 + pairwise_sum(squares, 0, n, 1)) / (n - 1)
+
+
+@njit(cache=True)
+def density_crossing(mean1, var1, n1, mean2, var2, n2):
+    """``split_statistics.density_crossing`` (eq. 13); (found, root)."""
+    if mean1 == mean2 or var1 <= 0.0 or var2 <= 0.0 or n1 <= 0 or n2 <= 0:
+        return False, 0.0
+    log_term = 2.0 * var1 * var2 * math.log(n1 * math.sqrt(var2) / (n2 * math.sqrt(var1)))
+    a = var1 - var2
+    b = 2.0 * (mean1 * var2 - mean2 * var1)
+    c = mean2 * mean2 * var1 - mean1 * mean1 * var2 + log_term
+    biggest = var2 if var2 > var1 else var1
+    nroots = 0
+    root0 = 0.0
+    root1 = 0.0
+    if abs(a) <= 1e-12 * biggest:
+        if b != 0.0:
+            root0 = -c / b
+            nroots = 1
+    else:
+        disc = b * b - 4.0 * a * c
+        if disc < 0.0:
+            return False, 0.0
+        sq = math.sqrt(disc)
+        root0 = (-b - sq) / (2.0 * a)
+        root1 = (-b + sq) / (2.0 * a)
+        nroots = 2
+    low = mean2 if mean2 < mean1 else mean1
+    high = mean2 if mean2 > mean1 else mean1
+    middle = 0.5 * (mean1 + mean2)
+    found = False
+    best = 0.0
+    for j in range(nroots):
+        r = root0 if j == 0 else root1
+        if low < r < high:
+            if not found:
+                best = r
+                found = True
+            elif abs(r - middle) < abs(best - middle):
+                best = r
+    return found, best
+
+
+@njit(cache=True)
+def choose_split(leaf, slot, st, fs, lf, bufi, buff, bctr):
+    """``PartitionTree._try_split`` up to ``split``: the buffer's pairs in ``arrays()`` order,
+    ``choose_split`` (eqs. 12-13); returns (dimension, value), dimension -1 for None."""
+    if st[I_NLEAVES] >= st[C_MAX_LEAVES]:
+        return -1, 0.0
+    lo0 = lf[leaf, LF_LO0]
+    lo1 = lf[leaf, LF_LO1]
+    hi0 = lf[leaf, LF_HI0]
+    hi1 = lf[leaf, LF_HI1]
+    rw0 = fs[F_RW0]
+    rw1 = fs[F_RW1]
+    mw0 = rw0 * fs[F_MIN_FRACTION]
+    mw1 = rw1 * fs[F_MIN_FRACTION]
+    el0 = (hi0 - lo0) >= 2.0 * mw0
+    el1 = (hi1 - lo1) >= 2.0 * mw1
+    if not (el0 or el1):
+        return -1, 0.0
+    capacity = buff.shape[1]
+    count = bctr[slot, B_COUNT]
+    head = bctr[slot, B_HEAD]
+    n1 = 0
+    n2 = 0
+    for i in range(count):
+        j = i if count < capacity else (i + head) % capacity
+        e = buff[slot, j]
+        if e > 0.0:
+            n1 += 1
+        elif e < 0.0:
+            n2 += 1
+    if n1 < 2 or n2 < 2:
+        return -1, 0.0
+    pos = np.empty((n1, 2), dtype=np.float64)
+    neg = np.empty((n2, 2), dtype=np.float64)
+    a = 0
+    b = 0
+    for i in range(count):
+        j = i if count < capacity else (i + head) % capacity
+        e = buff[slot, j]
+        if e > 0.0:
+            pos[a, 0] = bufi[slot, 2 * j]
+            pos[a, 1] = bufi[slot, 2 * j + 1]
+            a += 1
+        elif e < 0.0:
+            neg[b, 0] = bufi[slot, 2 * j]
+            neg[b, 1] = bufi[slot, 2 * j + 1]
+            b += 1
+    r0 = hi0 - lo0
+    r1 = hi1 - lo1
+    if st[C_ROOT_NORM]:
+        r0 = r0 / rw0 if rw0 > 0.0 else 0.0
+        r1 = r1 / rw1 if rw1 > 0.0 else 0.0
+    raw0 = 0.0
+    raw1 = 0.0
+    for c in range(2):  # t_statistics without the range weight
+        m1, v1 = column_stats(pos, c)
+        m2, v2 = column_stats(neg, c)
+        gap = abs(m1 - m2)
+        spread = math.sqrt(v1 / n1 + v2 / n2)
+        t = gap / spread if spread > 0.0 else (math.inf if gap > 0 else 0.0)
+        if c == 0:
+            raw0 = t
+        else:
+            raw1 = t
+    min_t = fs[F_MIN_T]
+    if min_t > 0.0 and not ((el0 and raw0 >= min_t) or (el1 and raw1 >= min_t)):
+        return -1, 0.0
+    t0 = r0 * raw0 if el0 else -math.inf
+    t1 = r1 * raw1 if el1 else -math.inf
+    if math.isnan(t0):
+        dim = 0
+    elif math.isnan(t1):
+        dim = 1
+    else:
+        dim = 1 if t1 > t0 else 0
+    low = lo0 if dim == 0 else lo1
+    high = hi0 if dim == 0 else hi1
+    margin = mw0 if dim == 0 else mw1
+    m1, v1 = vector_stats(pos, dim)
+    m2, v2 = vector_stats(neg, dim)
+    found = False
+    point = 0.0
+    if not st[C_MIDPOINT]:
+        found, point = density_crossing(m1, v1, n1, m2, v2, n2)
+    if not found:
+        point = 0.5 * (m1 + m2)
+    floor = low + margin
+    if floor > point:
+        point = floor
+    ceiling = high - margin
+    if ceiling < point:
+        point = ceiling
+    return dim, point
+
+
+@njit(cache=True)
+def split_leaf(
+    leaf,
+    dim,
+    value,
+    st,
+    fs,
+    li,
+    lf,
+    q,
+    visits,
+    counts,
+    fifo,
+    bufi,
+    buff,
+    bctr,
+    bsum,
+    free,
+    dirty,
+    log,
+):
+    """``PartitionTree.split`` with the children's samples, ``SMDPAgent._grow`` and the
+    strategy's ``on_split``. Returns the slot of a child buffer whose ring wrapped (the driver
+    must set its exact sums), else -1."""
+    first = st[I_NIDS]
+    capacity = buff.shape[1]
+    slot = li[leaf, L_SLOT]
+    count = bctr[slot, B_COUNT]
+    head = bctr[slot, B_HEAD]
+    # the pairs in arrays() order, before the parent's slot is freed
+    xs = np.empty((count, 2), dtype=np.float64)
+    es = np.empty(count, dtype=np.float64)
+    for i in range(count):
+        j = i if count < capacity else (i + head) % capacity
+        xs[i, 0] = bufi[slot, 2 * j]
+        xs[i, 1] = bufi[slot, 2 * j + 1]
+        es[i] = buff[slot, j]
+    li[leaf, L_DIM] = dim
+    lf[leaf, LF_THRESHOLD] = value
+    li[leaf, L_LEFT] = first
+    for c in range(2):
+        child = first + c
+        li[child, L_DIM] = -1
+        li[child, L_LEFT] = -1
+        li[child, L_PARENT] = leaf
+        li[child, L_DEPTH] = li[leaf, L_DEPTH] + 1
+        li[child, L_SLOT] = -1
+        li[child, L_TABU_MASK] = 0
+        li[child, L_EPS_HAS] = 0
+        li[child, L_COUNTS_HAS] = 0
+        li[child, L_DIRTY] = 0
+        lf[child, LF_THRESHOLD] = 0.0
+        lf[child, LF_EPS] = 0.0
+        lf[child, LF_LO0] = lf[leaf, LF_LO0]
+        lf[child, LF_LO1] = lf[leaf, LF_LO1]
+        lf[child, LF_HI0] = lf[leaf, LF_HI0]
+        lf[child, LF_HI1] = lf[leaf, LF_HI1]
+    lf[first, LF_HI0 + dim] = value
+    lf[first + 1, LF_LO0 + dim] = value
+    free_slot(leaf, st, li, free)
+    add_log(LOG_SPLIT, leaf, st, log)
+    st[I_NIDS] = first + 2
+    st[I_NLEAVES] += 1
+    pending = -1
+    if st[C_INHERIT_SAMPLES]:
+        left = np.empty(count, dtype=np.int64)
+        right = np.empty(count, dtype=np.int64)
+        nl = 0
+        nr = 0
+        for i in range(count):
+            if xs[i, dim] < value:
+                left[nl] = i
+                nl += 1
+            else:
+                right[nr] = i
+                nr += 1
+        for c in range(2):
+            rows = left if c == 0 else right
+            m = nl if c == 0 else nr
+            if m == 0:
+                continue
+            child = first + c
+            cslot = alloc_slot(child, st, li, bufi, buff, bctr, bsum, free, log)
+            ces = np.empty(m, dtype=np.float64)
+            for i in range(m):
+                ces[i] = es[rows[i]]
+            r = buffer_add(cslot, xs, rows, 0, ces, 0, 0, m, bufi, buff, bctr, bsum)
+            if r < 0:  # all pairs went this way and filled the ring: sums from NumPy
+                pending = cslot
+    # SMDPAgent._grow
+    actions = st[C_ACTIONS]
+    for c in range(2):
+        child = first + c
+        for a in range(actions):
+            q[child, a] = q[leaf, a] if st[C_INHERIT_Q] else fs[F_Q_INIT]
+            visits[child, a] = 0 if st[C_RESET_COUNTS] else visits[leaf, a]
+        mark_dirty(child, st, li, dirty)
+    mark_dirty(leaf, st, li, dirty)
+    # the base strategy's on_split
+    strategy = st[C_STRATEGY]
+    if strategy == S_ADAPTIVE:
+        had = li[leaf, L_COUNTS_HAS] and li[leaf, L_EPS_HAS]
+        li[leaf, L_COUNTS_HAS] = 0
+        li[leaf, L_EPS_HAS] = 0
+        if st[C_STRATEGY_INHERIT] and had:
+            for c in range(2):
+                child = first + c
+                for a in range(actions):
+                    counts[child, a] = counts[leaf, a]
+                lf[child, LF_EPS] = lf[leaf, LF_EPS]
+                li[child, L_COUNTS_HAS] = 1
+                li[child, L_EPS_HAS] = 1
+                add_log(LOG_COUNTS, child, st, log)
+                add_log(LOG_EPS, child, st, log)
+    elif strategy == S_VDBE:
+        had = li[leaf, L_EPS_HAS]
+        li[leaf, L_EPS_HAS] = 0
+        if st[C_STRATEGY_INHERIT] and had:
+            for c in range(2):
+                child = first + c
+                lf[child, LF_EPS] = lf[leaf, LF_EPS]
+                li[child, L_EPS_HAS] = 1
+                add_log(LOG_EPS, child, st, log)
+    if st[C_TABU] and li[leaf, L_TABU_MASK]:  # Tabu.on_split, _set_entries, _trim
+        ring = fifo.shape[0]
+        length = st[I_TABU_LEN]
+        kept = np.empty((2 * length, 2), dtype=np.int64)
+        m = 0
+        for j in range(length):
+            e = (st[I_TABU_HEAD] + j) % ring
+            owner = fifo[e, 0]
+            action = fifo[e, 1]
+            if owner != leaf:
+                kept[m, 0] = owner
+                kept[m, 1] = action
+                m += 1
+            elif st[C_TABU_INHERIT]:
+                for c in range(2):
+                    kept[m, 0] = first + c
+                    kept[m, 1] = action
+                    m += 1
+        li[leaf, L_TABU_MASK] = 0
+        if st[C_TABU_INHERIT]:
+            li[first, L_TABU_MASK] = 0
+            li[first + 1, L_TABU_MASK] = 0
+            for j in range(m):
+                li[kept[j, 0], L_TABU_MASK] |= 1 << kept[j, 1]
+        for j in range(m):
+            fifo[j, 0] = kept[j, 0]
+            fifo[j, 1] = kept[j, 1]
+        st[I_TABU_HEAD] = 0
+        st[I_TABU_LEN] = m
+        tabu_trim(st, li, fifo)
+        st[I_TABU_DIRTY] = 1
+    return pending
+
+
+@njit(cache=True)
+def record(
+    st, fs, li, lf, q, visits, counts, fifo, xs, errs, bufi, buff, bctr, bsum, free, dirty, log
+):
+    """``partition.record(leaf, xs[start:end], errs[:end - start])`` and, after a split,
+    ``SMDPAgent._grow``; resumable (``st[I_REC_STAGE]``). Returns 0 when done (``st[I_SPLIT]``
+    says whether it split), EV_SUMS when NumPy's exact sums of ``st[I_SUM_SLOT]`` are needed,
+    EV_PY_TAIL when ``split`` would raise (the driver lets the reference raise it)."""
+    leaf = st[I_REC_LEAF]
+    start = st[I_REC_START]
+    n = st[I_REC_END] - start
+    stage = st[I_REC_STAGE]
+    if stage == 0:
+        slot = li[leaf, L_SLOT]
+        if slot < 0:
+            slot = alloc_slot(leaf, st, li, bufi, buff, bctr, bsum, free, log)
+        r = buffer_add(slot, xs, None, start, errs, 0, st[I_ADD_K], n, bufi, buff, bctr, bsum)
+        if r < 0:
+            st[I_ADD_K] = -r
+            st[I_SUM_SLOT] = slot
+            return EV_SUMS
+        stage = 1
+    if stage == 1:
+        st[I_REC_STAGE] = 3
+        st[I_SPLIT] = 0
+        slot = li[leaf, L_SLOT]
+        count = bctr[slot, B_COUNT]
+        if count < st[C_BUFFER_CAP]:
+            return 0
+        mean = bsum[slot, 0] / count
+        v = bsum[slot, 1] / count - mean * mean
+        variance = v if v > 0.0 else 0.0
+        dim = -1
+        value = 0.0
+        if (
+            count >= st[C_BUFFER_CAP]
+            and abs(mean) < fs[F_MAX_ABS_MEAN]
+            and variance > fs[F_MIN_VARIANCE]
+        ):
+            dim, value = choose_split(leaf, slot, st, fs, lf, bufi, buff, bctr)
+        if dim < 0:  # buf.clear()
+            bctr[slot, B_COUNT] = 0
+            bctr[slot, B_HEAD] = 0
+            bsum[slot, 0] = 0.0
+            bsum[slot, 1] = 0.0
+            return 0
+        low = lf[leaf, LF_LO0 + dim]
+        high = lf[leaf, LF_HI0 + dim]
+        if not low < value < high:
+            st[I_SPLIT_DIM] = dim
+            fs[F_SPLIT_VALUE] = value
+            return EV_PY_TAIL
+        st[I_SPLIT] = 1
+        pending = split_leaf(
+            leaf,
+            dim,
+            value,
+            st,
+            fs,
+            li,
+            lf,
+            q,
+            visits,
+            counts,
+            fifo,
+            bufi,
+            buff,
+            bctr,
+            bsum,
+            free,
+            dirty,
+            log,
+        )
+        if pending >= 0:
+            st[I_REC_STAGE] = 2
+            st[I_SUM_SLOT] = pending
+            return EV_SUMS
+    return 0
+
+
+@njit(cache=True, inline="always")
 def end_epoch(
     leaf,
     action,
@@ -436,27 +1071,30 @@ def end_epoch(
     bsum,
     free,
     dirty,
+    log,
 ):
     """``SMDPAgent._end_epoch`` for the inputs ``xs[start:end]``: eqs. (9)-(10), the strategy's
     hooks and, when the leaf's buffer takes the pairs without a split test, the record.
 
-    Returns 0 (recorded, no split possible), 1 (the driver must record: the buffer fills, so
-    the split test runs in Python; the errors are in ``errs[:end - start]``) or 2 (no free
-    buffer slot: nothing was changed, the driver must grow the pool).
+    Returns 0 (recorded, no split possible), 1 (the split test must run: the errors are in
+    ``errs[:end - start]``) or 2 (no room in the log, the slot pool or the id table: nothing
+    was changed, the driver must grow them).
     """
     n = end - start
     records = st[C_RECORDS]
+    if st[I_NLOG] + LOG_ROOM > log.shape[0] or (
+        records and (st[I_NFREE] < 3 or st[I_NIDS] + 2 > li.shape[0])
+    ):
+        return 2
     slot = li[leaf, L_SLOT]
     count = 0
     head = 0
     in_kernel = False
     if records:
         if slot >= 0:
-            count = bctr[slot, 0]
-            head = bctr[slot, 1]
+            count = bctr[slot, B_COUNT]
+            head = bctr[slot, B_HEAD]
         in_kernel = head + n < st[C_BUFFER_CAP] and count + n < st[C_BUFFER_CAP]
-        if in_kernel and slot < 0 and st[I_NFREE] == 0:
-            return 2
     gamma = fs[F_GAMMA]
     alpha = fs[F_ALPHA]
     old = q[leaf, action]
@@ -480,14 +1118,14 @@ def end_epoch(
             for a in range(actions):
                 counts[leaf, a] = 0
             li[leaf, L_COUNTS_HAS] = 1
-            li[leaf, L_NEW] = 1
+            add_log(LOG_COUNTS, leaf, st, log)
         counts[leaf, action] += 1
         lf[leaf, LF_EPS] = adaptive_epsilon(
             counts, leaf, actions, new - old, fs[F_CN], fs[F_CH], st[C_VARIANT]
         )
         if not li[leaf, L_EPS_HAS]:
             li[leaf, L_EPS_HAS] = 1
-            li[leaf, L_NEW] = 1
+            add_log(LOG_EPS, leaf, st, log)
     elif strategy == S_VDBE:
         previous = lf[leaf, LF_EPS] if li[leaf, L_EPS_HAS] else 1.0
         decay = math.exp(-abs(new - old) / fs[F_SIGMA])
@@ -496,7 +1134,7 @@ def end_epoch(
         lf[leaf, LF_EPS] = delta * f + (1.0 - delta) * previous
         if not li[leaf, L_EPS_HAS]:
             li[leaf, L_EPS_HAS] = 1
-            li[leaf, L_NEW] = 1
+            add_log(LOG_EPS, leaf, st, log)
     if st[C_TABU]:  # Tabu.on_epoch_end
         mask = li[leaf, L_TABU_MASK]
         if not (mask >> action) & 1:
@@ -513,29 +1151,8 @@ def end_epoch(
     if not in_kernel:
         return 1
     if slot < 0:
-        st[I_NFREE] -= 1
-        slot = free[st[I_NFREE]]
-        li[leaf, L_SLOT] = slot
-        li[leaf, L_NEW] = 1
-        bctr[slot, 0] = 0
-        bctr[slot, 1] = 0
-        bctr[slot, 2] = 0
-        bsum[slot, 0] = 0.0
-        bsum[slot, 1] = 0.0
-    # ErrorBuffer.add, the branch without wrap: slice copies and sequential sums.
-    s = 0.0
-    s2 = 0.0
-    for k in range(n):
-        e = errs[k]
-        bufi[slot, 2 * (head + k)] = xs[start + k, 0]
-        bufi[slot, 2 * (head + k) + 1] = xs[start + k, 1]
-        buff[slot, head + k] = e
-        s += e
-        s2 += e * e
-    bctr[slot, 0] = count + n
-    bctr[slot, 1] = head + n
-    bsum[slot, 0] = bsum[slot, 0] + s
-    bsum[slot, 1] = bsum[slot, 1] + s2
+        slot = alloc_slot(leaf, st, li, bufi, buff, bctr, bsum, free, log)
+    buffer_add(slot, xs, None, start, errs, 0, 0, n, bufi, buff, bctr, bsum)
     return 0
 
 
@@ -665,6 +1282,7 @@ def run_episode(
     bsum,
     free,
     dirty,
+    log,
     moves,
     noise,
     cells,
@@ -780,6 +1398,7 @@ def run_episode(
                         bsum,
                         free,
                         dirty,
+                        log,
                     )
                     if code == 2:
                         return EV_POOL
@@ -787,6 +1406,11 @@ def run_episode(
                         st[I_REC_LEAF] = st[I_LEAF]
                         st[I_REC_START] = 0
                         st[I_REC_END] = n
+                        if st[C_KREC]:
+                            st[I_REC_STAGE] = 0
+                            st[I_ADD_K] = 0
+                            st[I_PHASE] = PH_RECORD
+                            continue
                         st[I_PHASE] = PH_END_RESUME
                         return EV_RECORD
                 else:  # PH_END_RESUME
@@ -840,6 +1464,7 @@ def run_episode(
                         bsum,
                         free,
                         dirty,
+                        log,
                     )
                     if code == 2:
                         return EV_POOL
@@ -848,9 +1473,16 @@ def run_episode(
                         st[I_REC_START] = start
                         st[I_REC_END] = end
                         st[I_HE] = end
+                        if st[C_KREC]:
+                            st[I_REC_STAGE] = 0
+                            st[I_ADD_K] = 0
+                            st[I_PHASE] = PH_RECORD
+                            break
                         st[I_PHASE] = PH_END_RESUME
                         return EV_RECORD
                     st[I_HS] = end
+                if st[I_PHASE] == PH_RECORD:
+                    continue
                 split = st[I_ANY_SPLIT]
                 finished = True
             if finished:
@@ -867,5 +1499,113 @@ def run_episode(
                 st[I_LEAF] = leaf
                 st[I_CURRENT] = leaf
                 st[I_PHASE] = PH_SELECT
+        elif phase == PH_RECORD:
+            code = record(
+                st,
+                fs,
+                li,
+                lf,
+                q,
+                visits,
+                counts,
+                fifo,
+                xs,
+                errs,
+                bufi,
+                buff,
+                bctr,
+                bsum,
+                free,
+                dirty,
+                log,
+            )
+            if code != 0:
+                return code
+            st[I_PHASE] = PH_END_RESUME
         else:
             return EV_DONE
+
+
+# -- One call, few arguments ----------------------------------------------------------------
+
+POOLED_INT = (
+    "li",
+    "visits",
+    "counts",
+    "fifo",
+    "grid_i",
+    "held",
+    "bctr",
+    "free",
+    "dirty",
+    "log",
+    "cells",
+    "bounds_r",
+)
+POOLED_FLOAT = (
+    "lf",
+    "q",
+    "ubuf",
+    "grid_f",
+    "xs",
+    "rs",
+    "errs",
+    "bsum",
+    "moves",
+    "noise",
+    "bounds_c",
+    "pieces",
+)
+"""The arrays :func:`run_pooled` takes as views of two pools (row i of ``lay`` for the i-th of
+POOLED_INT + POOLED_FLOAT: offset, rows, columns), in this order: numba's dispatch costs per
+array argument, and the kernel returns to Python for every pybullet sweep."""
+
+
+@njit(cache=True, inline="always")
+def view1(pool, lay, i):
+    o = lay[i, 0]
+    return pool[o : o + lay[i, 1]]
+
+
+@njit(cache=True, inline="always")
+def view2(pool, lay, i):
+    o = lay[i, 0]
+    rows = lay[i, 1]
+    columns = lay[i, 2]
+    return pool[o : o + rows * columns].reshape((rows, columns))
+
+
+@njit(cache=True)
+def run_pooled(st, fs, ipool, fpool, lay, bufi, buff):
+    """:func:`run_episode` on the pools' views."""
+    f = len(POOLED_INT)
+    return run_episode(
+        st,
+        fs,
+        view2(ipool, lay, 0),  # li
+        view2(fpool, lay, f),  # lf
+        view2(fpool, lay, f + 1),  # q
+        view2(ipool, lay, 1),  # visits
+        view2(ipool, lay, 2),  # counts
+        view2(ipool, lay, 3),  # fifo
+        view1(fpool, lay, f + 2),  # ubuf
+        view2(fpool, lay, f + 3),  # grid_f
+        view2(ipool, lay, 4),  # grid_i
+        view2(fpool, lay, f + 4),  # xs
+        view1(fpool, lay, f + 5),  # rs
+        view1(ipool, lay, 5),  # held
+        view1(fpool, lay, f + 6),  # errs
+        bufi,
+        buff,
+        view2(ipool, lay, 6),  # bctr
+        view2(fpool, lay, f + 7),  # bsum
+        view1(ipool, lay, 7),  # free
+        view1(ipool, lay, 8),  # dirty
+        view2(ipool, lay, 9),  # log
+        view2(fpool, lay, f + 8),  # moves
+        view1(fpool, lay, f + 9),  # noise
+        view2(ipool, lay, 10),  # cells
+        view2(fpool, lay, f + 10),  # bounds_c
+        view2(ipool, lay, 11),  # bounds_r
+        view2(fpool, lay, f + 11),  # pieces
+    )

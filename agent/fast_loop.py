@@ -53,7 +53,7 @@ from typing import Any
 import numpy as np
 from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker, TimeLimit
 
-from agent import smdp
+from agent import smdp, split_statistics
 from agent.config import TreeConfig
 from agent.episode_stats import EpisodeStats
 from agent.error_buffer import ErrorBuffer
@@ -210,6 +210,15 @@ def _agent_functions() -> dict[str, Any]:
         "UniformGrid.leaf_of": UniformGrid.leaf_of,
         "ErrorBuffer.__init__": ErrorBuffer.__init__,
         "ErrorBuffer.add": ErrorBuffer.add,
+        "ErrorBuffer._exact_sums": ErrorBuffer._exact_sums,
+        "ErrorBuffer.mean_variance": ErrorBuffer.mean_variance,
+        "ErrorBuffer.clear": ErrorBuffer.clear,
+        "ErrorBuffer.arrays": ErrorBuffer.arrays,
+        "should_split": split_statistics.should_split,
+        "t_statistics": split_statistics.t_statistics,
+        "density_crossing": split_statistics.density_crossing,
+        "split_point": split_statistics.split_point,
+        "choose_split": split_statistics.choose_split,
         "UniformStream.random": UniformStream.random,
         "epoch_returns": smdp.epoch_returns,
         "leaf_update": smdp.leaf_update,
@@ -268,6 +277,15 @@ FINGERPRINTS = {
     "UniformGrid.leaf_of": "d0472db7cca8f40e",
     "ErrorBuffer.__init__": "9ea1b2a8897928d2",
     "ErrorBuffer.add": "60eb94099d6ba852",
+    "ErrorBuffer._exact_sums": "449e23fee4655dca",
+    "ErrorBuffer.mean_variance": "ccbf03f39d469108",
+    "ErrorBuffer.clear": "971d49be875d6831",
+    "ErrorBuffer.arrays": "98183933f81869fd",
+    "should_split": "f92a49ed5e2bc1b4",
+    "t_statistics": "4f6215544c013169",
+    "density_crossing": "262ff1e7150804f2",
+    "split_point": "3339785ebec57ee4",
+    "choose_split": "74c2c03de5123666",
     "UniformStream.random": "8991e422a2b3f799",
     "epoch_returns": "8f2bfb5777511e81",
     "leaf_update": "1aa0af332e5cc0c6",
@@ -464,6 +482,30 @@ def ineligible_reason(agent: Any, env: Any) -> str | None:
     return _changed_code(chain.base)
 
 
+MAX_KERNEL_BUFFER = 4096
+"""The kernel runs the split test for buffers of at most this many pairs (NumPy's reductions
+along axis 0, which it mirrors, were checked up to there); larger ones run it in Python."""
+
+
+def _split_in_kernel(partition: Any, config: TreeConfig) -> bool:
+    """Whether the kernel runs this tree's split test (else ``partition.record`` in Python)."""
+    widths = partition._root_width.tolist()
+    numbers = (
+        config.split_max_abs_mean,
+        config.split_min_variance,
+        config.split_min_t,
+        config.q_init,
+    )
+    return (
+        config.error_buffer == "clear"
+        and 2 <= config.split_min_samples <= MAX_KERNEL_BUFFER
+        and all(math.isfinite(w) and w > 0.0 for w in widths)
+        and all(math.isfinite(float(v)) and float(v) == v for v in numbers)
+        and not partition._grown
+        and partition.scale is None
+    )
+
+
 # -- The kernel ----------------------------------------------------------------------------
 
 _kernel: Any = None
@@ -478,8 +520,9 @@ def load_kernel() -> Any:
             from agent import fast_kernel
 
             runner = FastRunner.__new__(FastRunner)
+            runner.k = fast_kernel
             runner._dummy_arrays(fast_kernel)
-            event = fast_kernel.run_episode(*runner._args())
+            event = fast_kernel.run_pooled(*runner._args())
             if event != fast_kernel.EV_DONE:
                 raise RuntimeError(f"the kernel's warm-up returned event {event}")
             _kernel = fast_kernel
@@ -560,6 +603,7 @@ class FastRunner:
     bsum: np.ndarray
     free: np.ndarray
     dirty: np.ndarray
+    log: np.ndarray
     moves: np.ndarray
     noise: np.ndarray
     cells: np.ndarray
@@ -590,6 +634,7 @@ class FastRunner:
             "bsum",
             "free",
             "dirty",
+            "log",
             "moves",
             "noise",
             "cells",
@@ -616,6 +661,13 @@ class FastRunner:
         self.env_seconds: float | None = None
         """CPU seconds spent in the env's Python code (sweeps, ``env.step``) once a benchmark
         sets this to 0.0 (``bench/bench_agent.py``); None: not measured."""
+        self._pending = False
+        self.sums_events = [0, 0, 0]
+        """Rings the kernel filled (exact sums asked of NumPy), for the tests: a leaf's own
+        (index 0) and a child's at a split (index 2)."""
+        self.lazy = True
+        """Leave the Python objects behind the kernel after an episode until :meth:`sync`
+        (``learn`` calls it before each callback and at its end); False: sync after each."""
         self._export()
 
     # -- one episode ---------------------------------------------------------------------
@@ -638,16 +690,20 @@ class FastRunner:
         fs[k.F_GX], fs[k.F_GY] = core.goal
         fs[k.F_GR] = core.goal_radius
         st[k.I_PHASE] = k.PH_START
-        run = k.run_episode
+        run = k.run_pooled
+        self._pending = True
         try:
             while True:
                 event = run(*self._args())
                 if event == k.EV_DONE:
                     break
-                if event == k.EV_PY_STEP:
-                    self._python_step()
-                elif event == k.EV_SWEEP:
+                if event == k.EV_SWEEP:
                     self._sweep()
+                elif event == k.EV_SUMS:
+                    self._exact_sums()
+                    self.sums_events[int(st[k.I_REC_STAGE])] += 1
+                elif event == k.EV_PY_STEP:
+                    self._python_step()
                 elif event == k.EV_RECORD:
                     self._record()
                 elif event == k.EV_UNIFORM:
@@ -655,12 +711,18 @@ class FastRunner:
                 elif event == k.EV_GROW:
                     self._grow_epoch_arrays()
                 elif event == k.EV_POOL:
-                    self._grow_pool(self.nslots + 16)
+                    self._make_room()
+                elif event == k.EV_PY_TAIL:
+                    self._split_fails()
                 else:
                     raise RuntimeError(f"fast loop: unknown kernel event {event}")
+        except BaseException:
+            self.sync()
+            raise
         finally:
-            self._sync_agent()
             self._commit_env()
+        if not self.lazy:
+            self.sync()
         terminated = bool(st[k.I_TERMINATED])
         epochs = int(st[k.I_EPOCHS])
         stats = EpisodeStats(
@@ -669,7 +731,7 @@ class FastRunner:
             episode_return=float(fs[k.F_TOTAL]),
             success=bool(st[k.I_SUCCESS]),
             truncated=bool(st[k.I_TRUNCATED]) and not terminated,
-            leaves=agent.partition.n_leaves,
+            leaves=int(st[k.I_NLEAVES]),
             collisions=int(st[k.I_COLLISIONS]),
             epochs=epochs,
             mean_epsilon=float(fs[k.F_EPS_SUM]) / epochs,
@@ -744,12 +806,12 @@ class FastRunner:
             self._import_cells(self.cell_table)
 
     def _record(self) -> None:
-        """The tail of ``_end_epoch`` in Python: the split test of ``partition.record`` and,
-        after a split, ``_grow``."""
+        """The tail of ``_end_epoch`` in Python (when the kernel does not run the split test):
+        ``partition.record`` and, after a split, ``_grow``."""
         k, st = self.k, self.st
         agent = self.agent
         leaf = int(st[k.I_REC_LEAF])
-        self._sync_agent(record_leaf=leaf)
+        self._write_back()
         start, end = int(st[k.I_REC_START]), int(st[k.I_REC_END])
         xs = self.xs[start:end].tolist()
         errors = self.errs[: end - start].tolist()
@@ -764,16 +826,50 @@ class FastRunner:
         st[k.I_SPLIT] = 1
         self._import_leaves([leaf, *range(old_ids, partition.n_ids)])
 
+    def _exact_sums(self) -> None:
+        """``ErrorBuffer._exact_sums`` of a slot whose ring the kernel filled: NumPy's pairwise
+        sum and BLAS's dot product, on the same values in the same order."""
+        k, st = self.k, self.st
+        slot = int(st[k.I_SUM_SLOT])
+        errs = self.buff[slot, : int(self.bctr[slot, k.B_COUNT])]
+        self.bsum[slot, 0] = float(errs.sum())
+        self.bsum[slot, 1] = float(np.dot(errs, errs))
+
+    def _split_fails(self) -> None:
+        """The kernel's split point is not strictly inside the leaf: ``PartitionTree.split``
+        raises there, so let it raise, on the state the reference has at that moment."""
+        k, st = self.k, self.st
+        self._write_back()
+        self.agent.partition.split(
+            int(st[k.I_REC_LEAF]), int(st[k.I_SPLIT_DIM]), float(self.fs[k.F_SPLIT_VALUE])
+        )
+        raise RuntimeError("fast loop: the kernel's split check and PartitionTree.split disagree")
+
+    def _make_room(self) -> None:
+        """The kernel needs room in its log, its buffer slots or its id table (event EV_POOL)."""
+        k, st = self.k, self.st
+        if int(st[k.I_NLOG]) + k.LOG_ROOM > self.log.shape[0]:
+            self.log = _resized(self.log, 2 * self.log.shape[0] + k.LOG_ROOM)
+        if int(st[k.I_NFREE]) < 3:
+            self._grow_pool(self.nslots + max(16, self.nslots // 2))
+        if int(st[k.I_NIDS]) + 2 > self.li.shape[0]:
+            self._ensure_capacity(int(st[k.I_NIDS]) + 2)
+
     def _next_uniform_block(self) -> None:
         """``UniformStream.random`` found its block spent: draw the next one now, exactly as it
         would, after the draws of this choice not yet committed."""
         k, st = self.k, self.st
         stream = self.agent.uniform
-        tail = self.ubuf[int(st[k.I_UPOS]) : int(st[k.I_ULEN])]
+        tail = self.ubuf[int(st[k.I_UPOS]) : int(st[k.I_ULEN])].copy()
         block = stream.generator.random(stream.block)
-        self.ubuf = np.ascontiguousarray(np.concatenate((tail, block)))
+        size = tail.shape[0] + block.shape[0]
+        if size <= self.ubuf.shape[0]:  # in place: the pools stay as they are
+            self.ubuf[: tail.shape[0]] = tail
+            self.ubuf[tail.shape[0] : size] = block
+        else:
+            self.ubuf = np.concatenate((tail, block, np.zeros(64)))
         st[k.I_UPOS] = 0
-        st[k.I_ULEN] = self.ubuf.shape[0]
+        st[k.I_ULEN] = size
         self.ubase = tail.shape[0]
         self.new_block = True
 
@@ -793,7 +889,11 @@ class FastRunner:
         fs[k.F_EX], fs[k.F_EY] = core.position
         if core.noise is not self._noise_list:
             self._noise_list = core.noise
-            self.noise = np.array(core.noise if core.noise else [0.0, 0.0], dtype=np.float64)
+            values = core.noise if core.noise else [0.0, 0.0]
+            if len(values) <= self.noise.shape[0]:  # in place: the pools stay as they are
+                self.noise[: len(values)] = values
+            else:
+                self.noise = np.array(values, dtype=np.float64)
             st[k.I_NOISE_LEN] = len(core.noise)
         st[k.I_NOISE] = core.noise_index
         fs[k.F_SX], fs[k.F_SY], fs[k.F_SR] = core.safe_ball
@@ -837,8 +937,8 @@ class FastRunner:
             first = self.npieces
             if first + len(pieces) > self.pieces.shape[0]:
                 self.pieces = _resized(self.pieces, 2 * (first + len(pieces)))
-            for j, piece in enumerate(pieces):
-                self.pieces[first + j] = piece
+            if pieces:
+                self.pieces[first : first + len(pieces)] = pieces
             self.bounds_c[index] = (bounds.cx, bounds.cy)
             self.bounds_r[index] = (first, len(pieces))
             self.npieces = first + len(pieces)
@@ -892,8 +992,27 @@ class FastRunner:
             fs[k.F_EPSILON] = base._epsilon
         st[k.I_EXPLORED] = getattr(strategy, "explored", False)
         st[k.I_BASE_EXPLORED] = getattr(base, "explored", False)
+        st[k.C_STRATEGY_INHERIT] = bool(getattr(base, "inherit_on_split", False))
+        st[k.C_TABU_INHERIT] = tabu is not None and tabu.on_split_policy == "inherit"
+        # the split test (PartitionTree.record, _try_split, split) and _grow
+        st[k.C_KREC] = is_tree and _split_in_kernel(partition, config)
+        if st[k.C_KREC]:
+            fs[k.F_RW0], fs[k.F_RW1] = partition._root_width.tolist()
+            fs[k.F_MIN_FRACTION] = config.min_leaf_fraction
+            fs[k.F_MAX_ABS_MEAN] = config.split_max_abs_mean
+            fs[k.F_MIN_VARIANCE] = config.split_min_variance
+            fs[k.F_MIN_T] = config.split_min_t
+            fs[k.F_Q_INIT] = agent.q_init
+            st[k.C_MAX_LEAVES] = config.max_leaves
+            st[k.C_MIDPOINT] = config.split_point == "midpoint"
+            st[k.C_ROOT_NORM] = config.range_normalization == "root"
+            st[k.C_INHERIT_SAMPLES] = config.children_inherit_samples
+            st[k.C_INHERIT_Q] = config.inherit_q
+            st[k.C_RESET_COUNTS] = config.reset_counts_on_split
 
         n_ids = self.n_ids = partition.n_ids
+        st[k.I_NIDS] = n_ids
+        st[k.I_NLEAVES] = partition.n_leaves
         capacity = max(64, 2 * n_ids)
         self.li = np.zeros((capacity, k.N_LI), dtype=np.int64)
         self.lf = np.zeros((capacity, k.N_LF), dtype=np.float64)
@@ -903,6 +1022,7 @@ class FastRunner:
         self.visits = np.zeros((capacity, actions), dtype=np.int64)
         self.counts = np.zeros((capacity, actions), dtype=np.int64)
         self.dirty = np.zeros(capacity, dtype=np.int64)
+        self.log = np.zeros((256, 2), dtype=np.int64)
         self.grid_f = np.zeros((2, 2), dtype=np.float64)
         self.grid_i = np.ones((2, 2), dtype=np.int64)
         if not is_tree:
@@ -912,7 +1032,7 @@ class FastRunner:
 
         ring = 4
         if tabu is not None:
-            ring = max(tabu.initial_capacity, tabu.min_capacity, len(tabu._fifo)) + 2
+            ring = max(tabu.initial_capacity, tabu.min_capacity, len(tabu._fifo)) + actions + 4
             st[k.C_TABU] = 1
             st[k.C_TABU_INITIAL] = tabu.initial_capacity
             st[k.C_TABU_SHRINK] = tabu.shrink_every
@@ -926,16 +1046,17 @@ class FastRunner:
         self.nslots = 0
         self.bufi = np.zeros((0, 2 * buffer_cap), dtype=np.float64)
         self.buff = np.zeros((0, buffer_cap), dtype=np.float64)
-        self.bctr = np.zeros((0, 3), dtype=np.int64)  # count, head, head as last synced
+        self.bctr = np.zeros((0, k.N_BCTR), dtype=np.int64)
         self.bsum = np.zeros((0, 2), dtype=np.float64)
         self.free = np.zeros(0, dtype=np.int64)
         self._grow_pool((partition.n_leaves if is_tree else 0) + 16)
         self._import_all()
 
         stream = agent.uniform
-        self.ubuf = np.array(stream._buffer, dtype=np.float64)
+        self.ubuf = np.zeros(max(len(stream._buffer), stream.block) + 64, dtype=np.float64)
+        self.ubuf[: len(stream._buffer)] = stream._buffer
         st[k.I_UPOS] = stream._position
-        st[k.I_ULEN] = self.ubuf.shape[0]
+        st[k.I_ULEN] = len(stream._buffer)
         self.ubase = 0
         self.new_block = False
 
@@ -973,10 +1094,11 @@ class FastRunner:
         self.noise = np.zeros(2, dtype=np.float64)
         self._import_env()
 
-    def _ensure_ids(self, n_ids: int) -> None:
+    def _ensure_capacity(self, rows: int) -> None:
+        """Room for ``rows`` ids in the per-id tables."""
         capacity = self.li.shape[0]
-        if n_ids > capacity:
-            size = max(2 * capacity, n_ids)
+        if rows > capacity:
+            size = max(2 * capacity, rows)
             li = _resized(self.li, size)
             li[capacity:, self.k.L_DIM] = -1
             li[capacity:, self.k.L_SLOT] = -1
@@ -986,7 +1108,6 @@ class FastRunner:
             self.visits = _resized(self.visits, size)
             self.counts = _resized(self.counts, size)
             self.dirty = _resized(self.dirty, size)
-        self.n_ids = n_ids
 
     def _grow_pool(self, size: int) -> None:
         old = self.nslots
@@ -1012,7 +1133,7 @@ class FastRunner:
         k = self.k
         agent = self.agent
         partition = agent.partition
-        self._ensure_ids(partition.n_ids)
+        self._ensure_capacity(partition.n_ids + 2)
         li, lf = self.li, self.lf
         base = self.strategy_base
         is_tree = type(partition) is PartitionTree
@@ -1022,7 +1143,11 @@ class FastRunner:
             if is_tree:
                 li[i, k.L_DIM] = partition._dim[i]
                 li[i, k.L_LEFT] = partition._left[i]
+                li[i, k.L_PARENT] = partition._parent[i]
+                li[i, k.L_DEPTH] = partition._depth[i]
                 lf[i, k.LF_THRESHOLD] = partition._threshold[i]
+                lf[i, k.LF_LO0 : k.LF_LO1 + 1] = partition._low[i]
+                lf[i, k.LF_HI0 : k.LF_HI1 + 1] = partition._high[i]
             self.q[i] = agent.q[i]
             self.visits[i] = agent.visits[i]
             li[i, k.L_COUNTS_HAS] = li[i, k.L_EPS_HAS] = 0
@@ -1039,10 +1164,13 @@ class FastRunner:
             if is_tree:
                 self._import_buffer(i, partition._buffers.get(i))
             li[i, k.L_DIRTY] = 0
+        self.n_ids = partition.n_ids
+        self.st[k.I_NIDS] = partition.n_ids
+        self.st[k.I_NLEAVES] = partition.n_leaves
         if is_tree:
             live = int(np.count_nonzero(li[: self.n_ids, k.L_SLOT] >= 0))
             needed = partition.n_leaves - live
-            if int(self.st[k.I_NFREE]) < needed:
+            if int(self.st[k.I_NFREE]) < needed + 3:
                 self._grow_pool(self.nslots + needed + 16)
         self._import_tabu()
 
@@ -1057,7 +1185,11 @@ class FastRunner:
         if type(partition) is PartitionTree:
             li[:n, k.L_DIM] = partition._dim
             li[:n, k.L_LEFT] = partition._left
+            li[:n, k.L_PARENT] = partition._parent
+            li[:n, k.L_DEPTH] = partition._depth
             lf[:n, k.LF_THRESHOLD] = partition._threshold
+            lf[:n, k.LF_LO0 : k.LF_LO1 + 1] = partition._low
+            lf[:n, k.LF_HI0 : k.LF_HI1 + 1] = partition._high
             for leaf, buf in partition._buffers.items():
                 self._import_buffer(leaf, buf)
         base = self.strategy_base
@@ -1076,10 +1208,6 @@ class FastRunner:
         slot = int(li[leaf, k.L_SLOT])
         if buf is None:
             if slot >= 0:  # the leaf split: its buffer was dropped
-                self.bufi[slot] = 0.0
-                self.buff[slot] = 0.0
-                self.bctr[slot] = 0
-                self.bsum[slot] = 0.0
                 self.free[st[k.I_NFREE]] = slot
                 st[k.I_NFREE] += 1
                 li[leaf, k.L_SLOT] = -1
@@ -1092,7 +1220,7 @@ class FastRunner:
             li[leaf, k.L_SLOT] = slot
         self.bufi[slot] = np.frombuffer(buf.inputs, dtype=np.float64)
         self.buff[slot] = np.frombuffer(buf.errors, dtype=np.float64)
-        self.bctr[slot] = (buf.count, buf.head, buf.head)
+        self.bctr[slot] = (buf.count, buf.head, buf.capacity, 0)  # nothing to copy back
         self.bsum[slot] = (buf.sum, buf.sum_sq)
 
     def _import_tabu(self) -> None:
@@ -1102,8 +1230,8 @@ class FastRunner:
             return
         li[: self.n_ids, k.L_TABU_MASK] = 0
         pairs = list(tabu._fifo)
-        if len(pairs) + 2 > self.fifo.shape[0]:
-            self.fifo = np.zeros((len(pairs) + 2, 2), dtype=np.int64)
+        if len(pairs) + self.agent.n_actions + 4 > self.fifo.shape[0]:
+            self.fifo = np.zeros((len(pairs) + self.agent.n_actions + 4, 2), dtype=np.int64)
         for j, (leaf, action) in enumerate(pairs):
             self.fifo[j] = (leaf, action)
             li[leaf, k.L_TABU_MASK] |= 1 << action
@@ -1113,28 +1241,39 @@ class FastRunner:
         st[k.I_TABU_SUCCESSES] = tabu.successes
         st[k.I_TABU_DIRTY] = 0
 
-    def _sync_agent(self, record_leaf: int | None = None) -> None:
+    def sync(self) -> None:
         """Write what the kernel changed into the Python objects.
 
-        With ``record_leaf`` (before a split test) only what the test and a split can read:
-        that leaf, the tabu list, and the ids whose dict entries the kernel created (written
-        now so that every dict keeps the reference's insertion order); the rest stays marked
-        and is written at the end of the episode.
+        ``learn`` calls this before each callback and when it returns (or raises); the kernel's
+        arrays are the truth in between. The tree's new nodes, the dicts' entries in the order
+        the reference creates and drops them (the kernel's log), then every changed id's values.
+        Nothing happens when the kernel has not run since the last call.
         """
+        if self._pending:
+            self._write_back()
+            self._pending = False
+
+    def _write_back(self) -> None:
         k, st = self.k, self.st
+        agent = self.agent
+        partition = agent.partition
+        n_ids = int(st[k.I_NIDS])
+        nlog = int(st[k.I_NLOG])
+        log = self.log[:nlog].tolist() if nlog else []
+        if type(partition) is PartitionTree and (nlog or n_ids != len(partition._dim)):
+            self._write_tree(log, n_ids)
+        if n_ids > len(agent.q):
+            width = agent.n_actions
+            agent.q.extend([0.0] * width for _ in range(n_ids - len(agent.q)))
+            agent.visits.extend([0] * width for _ in range(n_ids - len(agent.visits)))
+        if log:
+            self._replay_log(log)
+            st[k.I_NLOG] = 0
         n = int(st[k.I_NDIRTY])
         if n:
-            ids = self.dirty[:n].copy()
-            if record_leaf is None:
-                st[k.I_NDIRTY] = 0
-            else:
-                now = (self.li[ids, k.L_NEW] != 0) | (ids == record_leaf)
-                rest = ids[~now]
-                ids = ids[now]
-                self.dirty[: rest.shape[0]] = rest
-                st[k.I_NDIRTY] = rest.shape[0]
-            if ids.shape[0]:
-                self._write_leaves(ids)
+            st[k.I_NDIRTY] = 0
+            self._write_leaves(self.dirty[:n].copy())
+        self.n_ids = n_ids
         tabu = self.tabu
         if tabu is not None and st[k.I_TABU_DIRTY]:
             ring = self.fifo.shape[0]
@@ -1160,9 +1299,58 @@ class FastRunner:
             st[k.I_EXPLORED_DIRTY] = st[k.I_BASE_SELECTED] = 0
         stream = self.agent.uniform
         if self.new_block:
-            stream._buffer = self.ubuf[self.ubase :].tolist()
+            stream._buffer = self.ubuf[self.ubase : int(st[k.I_ULEN])].tolist()
             self.new_block = False
         stream._position = int(st[k.I_UPOS]) - self.ubase
+
+    def _write_tree(self, log: list[list[int]], n_ids: int) -> None:
+        """The nodes the kernel split and the ones it added, into the tree's lists."""
+        k = self.k
+        partition: Any = self.agent.partition
+        li, lf = self.li, self.lf
+        old = len(partition._dim)
+        for kind, i in log:
+            if kind == k.LOG_SPLIT and i < old:
+                partition._dim[i] = int(li[i, k.L_DIM])
+                partition._threshold[i] = float(lf[i, k.LF_THRESHOLD])
+                partition._left[i] = int(li[i, k.L_LEFT])
+        if n_ids > old:
+            rows = li[old:n_ids].tolist()
+            values = lf[old:n_ids].tolist()
+            for row, value in zip(rows, values, strict=True):
+                partition._dim.append(row[k.L_DIM])
+                partition._threshold.append(value[k.LF_THRESHOLD])
+                partition._left.append(row[k.L_LEFT])
+                partition._parent.append(row[k.L_PARENT])
+                partition._low.append([value[k.LF_LO0], value[k.LF_LO1]])
+                partition._high.append([value[k.LF_HI0], value[k.LF_HI1]])
+                partition._depth.append(row[k.L_DEPTH])
+        partition.n_leaves = int(self.st[k.I_NLEAVES])
+
+    def _replay_log(self, log: list[list[int]]) -> None:
+        """Create and drop the dicts' entries in the kernel's order (values come after)."""
+        k = self.k
+        partition: Any = self.agent.partition
+        buffers = partition._buffers if type(partition) is PartitionTree else {}
+        base = self.strategy_base
+        counts: dict[int, Any] = base._counts if type(base) is AdaptiveEpsilon else {}
+        epsilon: dict[int, Any] = (
+            base._epsilon if type(base) is AdaptiveEpsilon or type(base) is VDBE else {}
+        )
+        dims, capacity = 2, self.agent.config.split_min_samples
+        for kind, i in log:
+            if kind == k.LOG_BUFFER:
+                buffers[i] = ErrorBuffer(dims, capacity)
+            elif kind == k.LOG_COUNTS:
+                counts[i] = None
+            elif kind == k.LOG_EPS:
+                epsilon[i] = None
+            else:
+                buffers.pop(i, None)
+                row = counts.pop(i, None)
+                if row is not None:  # the list the reference stops updating here
+                    row[:] = self.counts[i].tolist()
+                epsilon.pop(i, None)
 
     def _write_leaves(self, ids: np.ndarray) -> None:
         k = self.k
@@ -1199,27 +1387,26 @@ class FastRunner:
         partition = agent.partition
         if type(partition) is PartitionTree:
             buffers = partition._buffers
-            dims, capacity = partition.dims, agent.config.split_min_samples
             bufi, buff, bctr, bsum = self.bufi, self.buff, self.bctr, self.bsum
             slots = self.li[ids, k.L_SLOT]
             counters = bctr[slots].tolist()
-            for i, slot, (count, head, synced) in zip(
-                id_list, slots.tolist(), counters, strict=True
+            sums = bsum[slots].tolist()
+            capacity = agent.config.split_min_samples
+            for i, slot, (count, head, low, high), (total, total_sq) in zip(
+                id_list, slots.tolist(), counters, sums, strict=True
             ):
-                if slot < 0 or head == synced:
-                    continue  # no buffer, or nothing appended since it was last written
-                buf = buffers.get(i)
-                if buf is None:
-                    buf = buffers[i] = ErrorBuffer(dims, capacity)
-                # the kernel appends without wrapping: copy what is new
-                inputs = np.frombuffer(buf.inputs, dtype=np.float64)
-                inputs[2 * synced : 2 * head] = bufi[slot, 2 * synced : 2 * head]
-                np.frombuffer(buf.errors, dtype=np.float64)[synced:head] = buff[slot, synced:head]
-                bctr[slot, 2] = head
+                if slot < 0:
+                    continue
+                buf = buffers[i]
+                if high > low:  # the stretch of storage the kernel wrote since the last copy
+                    inputs = np.frombuffer(buf.inputs, dtype=np.float64)
+                    inputs[2 * low : 2 * high] = bufi[slot, 2 * low : 2 * high]
+                    np.frombuffer(buf.errors, dtype=np.float64)[low:high] = buff[slot, low:high]
+                    bctr[slot, k.B_LOW] = capacity
+                    bctr[slot, k.B_HIGH] = 0
                 buf.count, buf.head = count, head
-                buf.sum, buf.sum_sq = bsum[slot].tolist()
+                buf.sum, buf.sum_sq = total, total_sq
         self.li[ids, k.L_DIRTY] = 0
-        self.li[ids, k.L_NEW] = 0
 
     # -- plumbing ------------------------------------------------------------------------
 
@@ -1230,7 +1417,34 @@ class FastRunner:
         return self._argtuple
 
     def _build_args(self) -> tuple[Any, ...]:
-        return tuple(getattr(self, name) for name in _ARGUMENT_ORDER)
+        """``fast_kernel.run_pooled``'s arguments: the arrays of POOLED_INT and POOLED_FLOAT
+        copied into two pools (the attributes become views of them), their layout, and the
+        arrays that stay apart (the state vectors and the buffers' storage, the largest)."""
+        k = self.k
+        names = (*k.POOLED_INT, *k.POOLED_FLOAT)
+        lay = np.zeros((len(names), 3), dtype=np.int64)
+        sizes = {np.dtype(np.int64): 0, np.dtype(np.float64): 0}
+        arrays = [getattr(self, name) for name in names]
+        for i, array in enumerate(arrays):
+            rows = array.shape[0]
+            columns = array.shape[1] if array.ndim == 2 else 1
+            lay[i] = (sizes[array.dtype], rows, columns)
+            sizes[array.dtype] += rows * columns
+        pools = {dtype: np.zeros(max(size, 1), dtype=dtype) for dtype, size in sizes.items()}
+        for i, (name, array) in enumerate(zip(names, arrays, strict=True)):
+            start, size = int(lay[i, 0]), array.size
+            view = pools[array.dtype][start : start + size].reshape(array.shape)
+            view[...] = array
+            object.__setattr__(self, name, view)
+        return (
+            self.st,
+            self.fs,
+            pools[np.dtype(np.int64)],
+            pools[np.dtype(np.float64)],
+            lay,
+            self.bufi,
+            self.buff,
+        )
 
     def _dummy_arrays(self, k: Any) -> None:
         """Arrays of the kernel's types for a call that returns at once (the warm-up)."""
@@ -1248,7 +1462,8 @@ class FastRunner:
         self.xs = np.zeros((1, 2), dtype=np.float64)
         self.held = self.free = self.dirty = np.zeros(1, dtype=np.int64)
         self.bufi = self.buff = np.zeros((1, 2), dtype=np.float64)
-        self.bctr = np.zeros((1, 3), dtype=np.int64)
+        self.bctr = np.zeros((1, k.N_BCTR), dtype=np.int64)
+        self.log = np.zeros((1, 2), dtype=np.int64)
         self.bsum = np.zeros((1, 2), dtype=np.float64)
         self.li = np.zeros((1, k.N_LI), dtype=np.int64)
         self.moves = np.zeros((1, 2), dtype=np.float64)
@@ -1257,38 +1472,6 @@ class FastRunner:
         self.bounds_c = np.zeros((1, 2), dtype=np.float64)
         self.bounds_r = np.zeros((1, 2), dtype=np.int64)
         self.pieces = np.zeros((1, 3), dtype=np.float64)
-
-
-_ARGUMENT_ORDER = [
-    "st",
-    "fs",
-    "li",
-    "lf",
-    "q",
-    "visits",
-    "counts",
-    "fifo",
-    "ubuf",
-    "grid_f",
-    "grid_i",
-    "xs",
-    "rs",
-    "held",
-    "errs",
-    "bufi",
-    "buff",
-    "bctr",
-    "bsum",
-    "free",
-    "dirty",
-    "moves",
-    "noise",
-    "cells",
-    "bounds_c",
-    "bounds_r",
-    "pieces",
-]
-"""``fast_kernel.run_episode``'s parameters."""
 
 
 def _resized(array: np.ndarray, rows: int) -> np.ndarray:

@@ -160,14 +160,24 @@ class SMDPAgent:
         run_episode: Callable[[Any, Any], EpisodeStats] = self._run_episode
         if fast and episodes > 0 and _fast_runner is not None:
             run_episode = _fast_runner(self, env)
+        # the fast loop writes its state into the agent only when asked (before a callback
+        # can look, and at the end)
+        sync: Callable[[], None] | None = getattr(run_episode, "sync", None)
         history: list[EpisodeStats] = []
-        for i in range(episodes):
-            obs, _ = env.reset(seed=reset_seed if i == 0 else None)
-            stats = run_episode(env, obs)
-            history.append(stats)
-            logger.debug("%s", stats)
-            if callback is not None and callback(stats) is False:
-                break
+        try:
+            for i in range(episodes):
+                obs, _ = env.reset(seed=reset_seed if i == 0 else None)
+                stats = run_episode(env, obs)
+                history.append(stats)
+                logger.debug("%s", stats)
+                if callback is not None:
+                    if sync is not None:
+                        sync()
+                    if callback(stats) is False:
+                        break
+        finally:
+            if sync is not None:
+                sync()
         return history
 
     def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:

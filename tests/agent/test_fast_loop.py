@@ -464,3 +464,197 @@ def test_adaptive_epsilon_agrees_with_python() -> None:
             expected = adaptive_epsilon(counts[0].tolist(), delta, 0.001, 0.025, variant)
             got = kernel.adaptive_epsilon(counts, 0, 4, delta, 0.001, 0.025, variant != "literal")
             assert got == expected
+
+
+# -- the split test in the kernel --------------------------------------------------------
+
+
+def _runs_with_sums(make: Any, episodes: int, seed: int = 7) -> tuple[Any, int]:
+    """run_both, and how many rings the fast run's kernel filled (exact sums from NumPy)."""
+    results = []
+    sums = 0
+    for fast in (False, True):
+        env = _env()
+        try:
+            agent = make(env)
+            if fast:
+                runner = fast_loop.episode_runner(agent, env)
+                assert isinstance(runner, fast_loop.FastRunner)
+                assert runner.st[runner.k.C_KREC] == 1
+                history = []
+                for i in range(episodes):
+                    obs, _ = env.reset(seed=seed if i == 0 else None)
+                    history.append(runner(env, obs))
+                runner.sync()
+                sums = runner.sums_events
+            else:
+                history = agent.learn(env, episodes, reset_seed=seed, fast=False)
+            results.append((history, agent_state(agent), env_state(env)))
+        finally:
+            env.close()
+    return results, sums
+
+
+KERNEL_SPLITS = [
+    # epochs longer than the buffer: the ring wraps inside one add, again and again
+    ("adaptive+tabu", {}, {"split_min_samples": 7, "max_epoch_steps": None}, 6, False),
+    ("vdbe", {}, {"split_min_samples": 30, "hold_exploration": False}, 5, False),
+    ("vdbe", {"form": "exponential"}, {"split_min_samples": 20}, 6, False),
+    # wide margins: a child takes all of the pairs (its ring full at once)
+    (
+        "adaptive+tabu",
+        {"on_split": "inherit"},
+        {"split_min_samples": 12, "min_leaf_fraction": 0.2},
+        6,
+        True,
+    ),
+    (
+        "epsilon-greedy",
+        {"epsilon": 0.3},
+        {"split_min_samples": 15, "min_leaf_fraction": 0.5},
+        5,
+        True,
+    ),
+    # the other split rules
+    ("adaptive", {}, {"split_min_samples": 20, "split_point": "midpoint"}, 5, False),
+    (
+        "tabu",
+        {},
+        {"split_min_samples": 20, "range_normalization": "none", "split_min_t": 1.5},
+        6,
+        False,
+    ),
+    ("adaptive", {"inherit_on_split": False}, {"split_min_samples": 25, "max_leaves": 6}, 5, False),
+]
+
+
+@pytest.mark.parametrize(("strategy", "params", "config", "seed", "child_rings"), KERNEL_SPLITS)
+def test_split_tests_in_the_kernel_are_bit_identical(
+    strategy: str, params: dict[str, Any], config: dict[str, Any], seed: int, child_rings: bool
+) -> None:
+    def make(env: gym.Env) -> Any:
+        exploration = make_exploration(strategy, **params)
+        cfg = TreeConfig(**{"split_max_abs_mean": 10.0, "split_min_variance": 1e-4, **config})
+        return TreeAgent(env.observation_space, env.action_space, exploration, seed, cfg)
+
+    results, sums = _runs_with_sums(make, episodes=4)
+    assert_same(results)
+    assert results[1][1]["n_leaves"] > 3
+    assert sums[0] > 0  # full rings: NumPy's exact sums were asked for
+    assert (sums[2] > 0) == child_rings
+
+
+def test_the_python_split_test_still_runs_for_large_buffers(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(fast_loop, "MAX_KERNEL_BUFFER", 10)
+    env = _env()
+    try:
+        runner = fast_loop.episode_runner(fig4_agent("adaptive+tabu")(env), env)
+        assert isinstance(runner, fast_loop.FastRunner)
+        assert runner.st[runner.k.C_KREC] == 0
+    finally:
+        env.close()
+    results = run_both(fig4_agent("adaptive+tabu", split_min_samples=40), episodes=4)
+    assert_same(results)
+    assert results[1][1]["n_leaves"] > 3
+
+
+def test_a_runner_called_directly_syncs_on_request() -> None:
+    env = _env()
+    try:
+        agent = fig4_agent("adaptive+tabu", split_min_samples=40)(env)
+        runner = fast_loop.episode_runner(agent, env)
+        obs, _ = env.reset(seed=3)
+        runner(env, obs)
+        assert agent.q == [[0.0] * agent.n_actions]  # lazy: not written yet
+        runner.sync()
+        runner.sync()  # nothing pending: no change
+        assert agent.partition.n_leaves == runner.st[runner.k.I_NLEAVES]
+        assert agent.q != [[0.0] * agent.n_actions]
+    finally:
+        env.close()
+
+
+def test_pairwise_sums_agree_with_numpy() -> None:
+    kernel = fast_loop.load_kernel()
+    rng = np.random.default_rng(4)
+    for n in [*range(1, 40), 127, 128, 129, 255, 256, 257, 500, 1000, 1023, 4096, 5000]:
+        a = rng.standard_normal(2 * n) * 10.0 ** rng.uniform(-3, 3)
+        assert kernel.pairwise_sum(a, 0, n, 1) == a[:n].sum()
+        assert 0.0 + kernel.pairwise_sum(a, 1, n, 2) == a[1::2].sum()
+
+
+def test_the_split_statistics_agree_with_numpy() -> None:
+    from agent import split_statistics as stats
+
+    kernel = fast_loop.load_kernel()
+    k = kernel
+    rng = np.random.default_rng(5)
+    for trial in range(400):
+        capacity = int(rng.choice([4, 9, 40, 500, fast_loop.MAX_KERNEL_BUFFER]))
+        full = trial % 2 == 0
+        count = capacity if full else int(rng.integers(4, capacity + 1))
+        head = int(rng.integers(0, capacity)) if full else count % capacity
+        low = rng.uniform(0.0, 100.0, 2)
+        high = low + rng.uniform(1.0, 200.0, 2)
+        root_low, root_high = np.zeros(2), np.array([300.0, 300.0])
+        inputs = rng.uniform(low, high, (capacity, 2))
+        errors = rng.standard_normal(capacity) + rng.uniform(-0.5, 0.5)
+        errors[rng.random(capacity) < 0.05] = 0.0
+        fraction = float(rng.choice([1 / 256, 0.01, 0.3]))
+        rule = "midpoint" if trial % 7 == 0 else "quest"
+        norm = "none" if trial % 5 == 0 else "root"
+        min_t = 2.0 if trial % 3 == 0 else 0.0
+        # the reference, on the ring in ErrorBuffer.arrays() order
+        order = np.arange(count) if count < capacity else (np.arange(capacity) + head) % capacity
+        xs, es = inputs[order], errors[order]
+        root_width = root_high - root_low
+        min_width = root_width * fraction
+        ranges = high - low
+        if norm == "root":
+            ranges = np.where(root_width > 0.0, ranges / root_width, 0.0)
+        expected = None
+        if ((high - low) >= 2.0 * min_width).any():
+            expected = stats.choose_split(xs, es, low, high, ranges, min_width, rule, min_t)
+        st = np.zeros(k.N_INT, dtype=np.int64)
+        fs = np.zeros(k.N_FLOAT, dtype=np.float64)
+        lf = np.zeros((1, k.N_LF), dtype=np.float64)
+        st[k.I_NLEAVES], st[k.C_MAX_LEAVES] = 1, 10
+        st[k.C_MIDPOINT], st[k.C_ROOT_NORM] = rule == "midpoint", norm == "root"
+        fs[k.F_RW0], fs[k.F_RW1] = root_width
+        fs[k.F_MIN_FRACTION], fs[k.F_MIN_T] = fraction, min_t
+        lf[0, k.LF_LO0 : k.LF_LO1 + 1], lf[0, k.LF_HI0 : k.LF_HI1 + 1] = low, high
+        bctr = np.array([[count, head, capacity, 0]], dtype=np.int64)
+        dim, value = kernel.choose_split(
+            0, 0, st, fs, lf, inputs.reshape(1, -1).copy(), errors.reshape(1, -1).copy(), bctr
+        )
+        assert (None if dim < 0 else (dim, value)) == expected, trial
+
+
+def test_numpy_reduces_axis_0_row_by_row_up_to_the_kernel_buffer() -> None:
+    kernel = fast_loop.load_kernel()
+    rng = np.random.default_rng(6)
+    for n in (2, 3, 17, 129, 1000, fast_loop.MAX_KERNEL_BUFFER):
+        group = rng.standard_normal((n, 2)) * 100.0
+        for c in range(2):
+            mean, var = kernel.column_stats(group, c)
+            assert (mean, var) == (group.mean(axis=0)[c], group.var(axis=0, ddof=1)[c])
+            mean, var = kernel.vector_stats(group, c)
+            assert (mean, var) == (float(group[:, c].mean()), float(group[:, c].var(ddof=1)))
+
+
+def test_density_crossing_agrees_with_python() -> None:
+    from agent.split_statistics import density_crossing
+
+    kernel = fast_loop.load_kernel()
+    rng = np.random.default_rng(7)
+    for _ in range(5000):
+        m1, m2 = rng.uniform(0.0, 10.0, 2)
+        v1, v2 = rng.uniform(0.01, 5.0, 2)
+        if rng.random() < 0.1:
+            v2 = v1
+        n1, n2 = (int(v) for v in rng.integers(2, 500, 2))
+        expected = density_crossing(m1, v1, n1, m2, v2, n2)
+        found, root = kernel.density_crossing(m1, v1, n1, m2, v2, n2)
+        assert (root if found else None) == expected
