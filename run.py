@@ -37,6 +37,7 @@ from experiments import (
     Playback,
     TasksLost,
     TrainJob,
+    Transfer,
     default_workers,
     make_backend,
 )
@@ -734,8 +735,6 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
 def cmd_transfer(args: argparse.Namespace) -> int:
     """Agents x conditions, evaluated, stored and reported."""
     from tqdm import tqdm
-
-    from experiments.transfer import Transfer
 
     if args.config is None and not args.agents:
         raise ConfigError("give a transfer file (CONFIG) or the agents (--agents)")
