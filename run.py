@@ -37,6 +37,7 @@ from experiments import (
     Playback,
     TasksLost,
     TrainJob,
+    Transfer,
     default_workers,
     make_backend,
 )
@@ -353,7 +354,8 @@ def _add_transfer_parser(sub: Any) -> None:
         default=0,
         metavar="N",
         help="also draw N failing episodes (failures.png): the first of each training recipe "
-        "and robot in dynamic mode at the moderate level, replayed (default: 0)",
+        "and robot in dynamic mode at the moderate level, else the strong one, replayed "
+        "(default: 0)",
     )
     transfer.add_argument(
         "--accept-code-change",
@@ -734,8 +736,6 @@ def cmd_transfer(args: argparse.Namespace) -> int:
     """Agents x conditions, evaluated, stored and reported."""
     from tqdm import tqdm
 
-    from experiments.transfer import Transfer
-
     if args.config is None and not args.agents:
         raise ConfigError("give a transfer file (CONFIG) or the agents (--agents)")
     job = Transfer.from_options(
@@ -791,7 +791,7 @@ def cmd_transfer(args: argparse.Namespace) -> int:
                 f"computed {len(computed)} cells in {time.perf_counter() - start:.1f} s; "
                 f"{steps / max(busy, 1e-9):,.0f} steps/s per worker"
             )
-    report = job.report()
+    report = job.report(traces=args.traces)
     print(
         f"report: {report.path} ({len(report.summary)} rows; figures: "
         f"{', '.join(f.name for f in report.figures)})"

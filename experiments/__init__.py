@@ -6,7 +6,9 @@ command line and prints from:
 - :class:`TrainJob`: one agent, one strategy, one seed, saved and pictured;
 - :class:`Experiment`: strategies x runs (x tasks: the layouts of a suite split, or
   ``[[task]]`` tables) into a results folder: ``pending()``, ``run()``, ``report()``;
-- :class:`Playback`: a saved agent evaluated or rendered in an environment.
+- :class:`Playback`: a saved agent evaluated or rendered in an environment;
+- :class:`Transfer` (:mod:`experiments.transfer`): saved agents x conditions (robots x modes x
+  layouts x perturbation levels) into a results folder: ``status()``, ``run()``, ``report()``.
 
 Behind it, one small module per concern:
 
@@ -34,7 +36,11 @@ Behind it, one small module per concern:
 - :mod:`experiments.aggregate`: IQM, performance profiles and probability of improvement over
   tasks, with stratified bootstrap intervals;
 - :mod:`experiments.task_report`: the report of an experiment over tasks;
-- :mod:`experiments.layout_sheet`: contact sheets of layouts with their shortest paths.
+- :mod:`experiments.layout_sheet`: contact sheets of layouts with their shortest paths;
+- :mod:`experiments.transfer`: the transfer matrix (its file, agents, cells, storage, the job);
+  :mod:`experiments.transfer_cell`: one cell and the task that evaluates it;
+  :mod:`experiments.transfer_report`: its tables and heatmaps;
+  :mod:`experiments.transfer_traces`: failing episodes replayed and drawn.
 
 The experiment files themselves (``paper_fig4.toml``, ``quick.toml``) live beside these modules.
 """
@@ -50,6 +56,7 @@ if TYPE_CHECKING:
     from experiments.jobs import EnvOptions, Experiment, Playback, TrainJob
     from experiments.layout_sheet import draw_layout_sheet, draw_suite_sheet
     from experiments.runner import FolderState
+    from experiments.transfer import Transfer
 
 _EXPORTS = {
     "BACKENDS": "experiments.backends",
@@ -64,6 +71,7 @@ _EXPORTS = {
     "Playback": "experiments.jobs",
     "TrainJob": "experiments.jobs",
     "FolderState": "experiments.runner",
+    "Transfer": "experiments.transfer",
     "draw_layout_sheet": "experiments.layout_sheet",
     "draw_suite_sheet": "experiments.layout_sheet",
 }
@@ -81,6 +89,7 @@ __all__ = [
     "Playback",
     "TasksLost",
     "TrainJob",
+    "Transfer",
     "default_workers",
     "draw_layout_sheet",
     "draw_suite_sheet",

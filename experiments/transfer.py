@@ -803,7 +803,7 @@ class Transfer:
     def report(self, traces: int = 0) -> Any:
         """Write the report of the finished cells (``ConfigError`` if none); with ``traces``,
         also ``failures.png``: that many failing episodes replayed and drawn (the first of
-        each recipe and robot in dynamic mode at the moderate level)."""
+        each recipe and robot in dynamic mode at the moderate level, else at the strong one)."""
         from experiments.transfer_report import write_transfer_report
 
         state = self.status()

@@ -67,20 +67,25 @@ def replay(cell: Cell, episode: int) -> tuple[Trace, Any]:
 
 
 def failing_cells(
-    state: TransferState, mode: str = "dynamic", level: str = "moderate", limit: int = 6
+    state: TransferState,
+    mode: str = "dynamic",
+    levels: Sequence[str] = ("moderate", "strong"),
+    limit: int = 6,
 ) -> list[tuple[Cell, int]]:
-    """The first cell (in plan order) of each (recipe, robot) in ``mode`` at ``level`` with a
-    failed episode, and that episode's number; at most ``limit``."""
+    """The first cell (in plan order) of each (recipe, robot) in ``mode`` with a failed
+    episode, and that episode's number: at the first of ``levels`` first, then at the next
+    for the recipes and robots that had none; at most ``limit``."""
     chosen: dict[tuple[str, str], tuple[Cell, int]] = {}
-    for cell in state.finished:
-        check = state.checks[cell.name]
-        condition = cell.condition
-        if condition.mode != mode or condition.level != level or check.columns is None:
-            continue
-        key = (cell.agent.group, condition.robot)
-        failed = np.flatnonzero(check.columns["success"] == 0)
-        if key not in chosen and failed.size:
-            chosen[key] = (cell, int(failed[0]) + 1)
+    for level in levels:
+        for cell in state.finished:
+            check = state.checks[cell.name]
+            condition = cell.condition
+            if condition.mode != mode or condition.level != level or check.columns is None:
+                continue
+            key = (cell.agent.group, condition.robot)
+            failed = np.flatnonzero(check.columns["success"] == 0)
+            if key not in chosen and failed.size:
+                chosen[key] = (cell, int(failed[0]) + 1)
     return list(chosen.values())[:limit]
 
 
