@@ -200,6 +200,7 @@ def test_a_wall_stops_the_robot_with_a_collision(
     ("robot", "actions", "mode"),
     [
         ("husky", "compass", "dynamic"),
+        ("rover", "compass", "dynamic"),
         ("husky", "native", "dynamic"),
         ("rover", "continuous", "dynamic"),
         ("racecar", "native", "dynamic"),
@@ -238,3 +239,48 @@ def test_differential_compass_steps_end_near_their_targets(
         obs = new
     assert np.mean(errors) < 0.5
     assert max(errors) < 1.0
+
+
+@pytest.mark.parametrize("robot", ["husky", "rover"])
+def test_a_straight_compass_step_rolls_every_wheel_its_distance(
+    make_env: Callable[..., gym.Env], robot: str
+) -> None:
+    # Dynamic mode at the robot's own physics (the husky's compass steps run at 60 Hz): a step
+    # along the heading is driven by the wheels, each turning about distance / radius.
+    env = make_env(maze="open", robot=robot, mode="dynamic", noise_variance=0.0)
+    obs, _ = env.reset(seed=0, options={"start": (150.0, 150.0, math.pi / 2)})
+    robot_ = env.unwrapped.robot
+    drive = robot_.drive
+    wheels = drive.left + drive.right
+    start = dict(zip(robot_._joints, robot_.joint_states(), strict=True))
+    before = [start[w.index] for w in wheels]
+    new, _, _, _, info = env.step(Action.UP)
+    assert not info["collision"]
+    after = dict(zip(robot_._joints, robot_.joint_states(), strict=True))
+    moved = float(np.hypot(*(new[:2] - obs[:2])))
+    assert moved == pytest.approx(5.0, abs=0.5)
+    assert abs(_heading_change(obs, new)) < 0.1
+    rolled = [w.sign * (after[w.index] - b) for w, b in zip(wheels, before, strict=True)]
+    expected = moved * 0.1 / drive.wheel_radius  # METRES_PER_UNIT
+    # Every wheel rolled forwards by at least the distance; the husky's, at 200 N m, also slip
+    # while it speeds up and brakes (1.34x at 60 Hz and at 240 Hz alike; at steady speed its
+    # wheels roll without slipping).
+    assert all(0.9 * expected < r < 1.5 * expected for r in rolled), (rolled, expected)
+
+
+@pytest.mark.parametrize("mode", MODES)
+@pytest.mark.parametrize("robot", ["husky", "rover"])
+def test_a_wall_stops_a_compass_step_with_a_collision(
+    make_env: Callable[..., gym.Env], robot: str, mode: str
+) -> None:
+    # The compass steps of the differential robots (60 Hz and 120 Hz physics in dynamic mode)
+    # into the wall at y = 0: reported, undone, never through it.
+    env = make_env(maze="open", robot=robot, mode=mode, noise_variance=0.0)
+    radius = env.unwrapped.robot.radius
+    obs, _ = env.reset(seed=0, options={"start": (150.0, radius + 2.0, -math.pi / 2)})
+    new, reward, _, _, info = env.step(Action.DOWN)
+    assert info["collision"]
+    assert reward == -1.0
+    assert np.allclose(new, obs, atol=1e-6)
+    body = env.unwrapped.robot
+    assert body.position()[1] > radius / 2
