@@ -723,6 +723,7 @@ class FastRunner:
             self._commit_env()
         if not self.lazy:
             self.sync()
+        st, fs = self.st, self.fs  # (views of the pools as they are now)
         terminated = bool(st[k.I_TERMINATED])
         epochs = int(st[k.I_EPOCHS])
         stats = EpisodeStats(
@@ -786,22 +787,24 @@ class FastRunner:
         move the kernel could not decide; the kernel does the rest of the step."""
         k, st, fs = self.k, self.st, self.fs
         x0, y0, x1, y1 = fs[k.F_SW_X0 : k.F_SW_Y1 + 1].tolist()
+        world = self.world
         if self.env_seconds is None:
-            collided = self.world.sweep_collides(x0, y0, x1, y1)
+            collided = world.sweep_collides(x0, y0, x1, y1)
         else:
             start = time.process_time()
-            collided = self.world.sweep_collides(x0, y0, x1, y1)
+            collided = world.sweep_collides(x0, y0, x1, y1)
             self.env_seconds += time.process_time() - start
         x, y = (x0, y0) if collided else (x1, y1)
         fs[k.F_OX] = x
         fs[k.F_OY] = y
-        st[k.I_COLLIDED] = collided
         gx, gy = self.goal
-        st[k.I_SUCCESS] = math.hypot(x - gx, y - gy) <= self.goal_radius
-        st[k.I_PY_STEPS] += 1
+        st[k.I_COLLIDED : k.I_SUCCESS + 1] = (
+            collided,
+            math.hypot(x - gx, y - gy) <= self.goal_radius,
+        )
         # the sweep renews the safe ball and may have seen a new cell (FastCore.safe_ball is
         # World._safe, FastCore.cells the live World._cells)
-        fs[k.F_SX], fs[k.F_SY], fs[k.F_SR] = self.world._safe
+        fs[k.F_SX : k.F_SR + 1] = world._safe
         if len(self.cell_table) != self.ncells:
             self._import_cells(self.cell_table)
 
@@ -923,27 +926,31 @@ class FastRunner:
         k = self.k
         table = self.cells
         new = len(cells) - self.ncells
+        index, first = self.nbounds, self.npieces
         for (cx, cy), bounds in itertools.islice(reversed(cells.items()), new):
             if not (0 <= cx < table.shape[0] and 0 <= cy < table.shape[1]):
                 continue  # left unseen: the kernel lets env.step take such moves
             if bounds is None:
                 table[cx, cy] = k.CELL_USELESS
                 continue
-            index = self.nbounds
             if index == self.bounds_c.shape[0]:
                 self.bounds_c = _resized(self.bounds_c, 2 * index)
                 self.bounds_r = _resized(self.bounds_r, 2 * index)
             pieces = bounds.pieces
-            first = self.npieces
-            if first + len(pieces) > self.pieces.shape[0]:
-                self.pieces = _resized(self.pieces, 2 * (first + len(pieces)))
-            if pieces:
-                self.pieces[first : first + len(pieces)] = pieces
-            self.bounds_c[index] = (bounds.cx, bounds.cy)
-            self.bounds_r[index] = (first, len(pieces))
-            self.npieces = first + len(pieces)
-            self.nbounds = index + 1
+            count = len(pieces)
+            if first + count > self.pieces.shape[0]:
+                self.pieces = _resized(self.pieces, 2 * (first + count))
+            if count:
+                self.pieces[first : first + count] = pieces
+            centres, ranges = self.bounds_c, self.bounds_r
+            centres[index, 0] = bounds.cx
+            centres[index, 1] = bounds.cy
+            ranges[index, 0] = first
+            ranges[index, 1] = count
             table[cx, cy] = index
+            index += 1
+            first += count
+        self.nbounds, self.npieces = index, first
         self.ncells = len(cells)
 
     # -- agent state ---------------------------------------------------------------------
@@ -1418,8 +1425,8 @@ class FastRunner:
 
     def _build_args(self) -> tuple[Any, ...]:
         """``fast_kernel.run_pooled``'s arguments: the arrays of POOLED_INT and POOLED_FLOAT
-        copied into two pools (the attributes become views of them), their layout, and the
-        arrays that stay apart (the state vectors and the buffers' storage, the largest)."""
+        copied into two pools (the attributes become views of them) and their layout. Handlers
+        must read the arrays from ``self`` (a replaced array moves every view)."""
         k = self.k
         names = (*k.POOLED_INT, *k.POOLED_FLOAT)
         lay = np.zeros((len(names), 3), dtype=np.int64)
@@ -1436,15 +1443,7 @@ class FastRunner:
             view = pools[array.dtype][start : start + size].reshape(array.shape)
             view[...] = array
             object.__setattr__(self, name, view)
-        return (
-            self.st,
-            self.fs,
-            pools[np.dtype(np.int64)],
-            pools[np.dtype(np.float64)],
-            lay,
-            self.bufi,
-            self.buff,
-        )
+        return (pools[np.dtype(np.int64)], pools[np.dtype(np.float64)], lay)
 
     def _dummy_arrays(self, k: Any) -> None:
         """Arrays of the kernel's types for a call that returns at once (the warm-up)."""
