@@ -701,7 +701,7 @@ class FastRunner:
                     self._sweep()
                 elif event == k.EV_SUMS:
                     self._exact_sums()
-                    self.sums_events[int(st[k.I_REC_STAGE])] += 1
+                    self.sums_events[int(self.st[k.I_REC_STAGE])] += 1
                 elif event == k.EV_PY_STEP:
                     self._python_step()
                 elif event == k.EV_RECORD:
