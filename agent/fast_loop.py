@@ -522,6 +522,7 @@ def load_kernel() -> Any:
             runner = FastRunner.__new__(FastRunner)
             runner.k = fast_kernel
             runner._dummy_arrays(fast_kernel)
+            runner._sweep_callback = fast_kernel.SWEEP_CALLBACK(lambda: 0)
             event = fast_kernel.run_pooled(*runner._args())
             if event != fast_kernel.EV_DONE:
                 raise RuntimeError(f"the kernel's warm-up returned event {event}")
@@ -662,6 +663,8 @@ class FastRunner:
         """CPU seconds spent in the env's Python code (sweeps, ``env.step``) once a benchmark
         sets this to 0.0 (``bench/bench_agent.py``); None: not measured."""
         self._pending = False
+        self._error: BaseException | None = None
+        self._sweep_callback = kernel.SWEEP_CALLBACK(self._sweep_from_kernel)
         self.sums_events = [0, 0, 0]
         """Rings the kernel filled (exact sums asked of NumPy), for the tests: a leaf's own
         (index 0) and a child's at a split (index 2)."""
@@ -697,9 +700,9 @@ class FastRunner:
                 event = run(*self._args())
                 if event == k.EV_DONE:
                     break
-                if event == k.EV_SWEEP:
-                    self._sweep()
-                elif event == k.EV_SUMS:
+                if len(self.cell_table) != self.ncells:  # cells the sweeps could not import
+                    self._import_cells(self.cell_table)
+                if event == k.EV_SUMS:
                     self._exact_sums()
                     self.sums_events[int(self.st[k.I_REC_STAGE])] += 1
                 elif event == k.EV_PY_STEP:
@@ -714,6 +717,10 @@ class FastRunner:
                     self._make_room()
                 elif event == k.EV_PY_TAIL:
                     self._split_fails()
+                elif event == k.EV_CALLBACK_ERROR:
+                    error, self._error = self._error, None
+                    assert error is not None
+                    raise error
                 else:
                     raise RuntimeError(f"fast loop: unknown kernel event {event}")
         except BaseException:
@@ -806,7 +813,17 @@ class FastRunner:
         # World._safe, FastCore.cells the live World._cells)
         fs[k.F_SX : k.F_SR + 1] = world._safe
         if len(self.cell_table) != self.ncells:
-            self._import_cells(self.cell_table)
+            self._import_cells(self.cell_table, grow=False)
+
+    def _sweep_from_kernel(self) -> int:
+        """:meth:`_sweep` as the kernel's ctypes callback (an exception cannot cross it: it is
+        kept and raised when the kernel has returned)."""
+        try:
+            self._sweep()
+        except BaseException as error:
+            self._error = error
+            return -1
+        return 0
 
     def _record(self) -> None:
         """The tail of ``_end_epoch`` in Python (when the kernel does not run the split test):
@@ -922,11 +939,20 @@ class FastRunner:
         if self.chain.time_limit is not None:
             self.chain.time_limit._elapsed_steps = int(st[k.I_ELAPSED])  # type: ignore[assignment]
 
-    def _import_cells(self, cells: dict[tuple[int, int], Any]) -> None:
+    def _import_cells(self, cells: dict[tuple[int, int], Any], grow: bool = True) -> None:
+        """The world's new cell bounds into the kernel's tables. ``grow=False`` (inside the
+        kernel's call, where no array may be replaced): nothing when they do not fit, and the
+        next return to Python imports them."""
         k = self.k
         table = self.cells
         new = len(cells) - self.ncells
         index, first = self.nbounds, self.npieces
+        if not grow:
+            pieces = sum(
+                len(b.pieces) for _, b in itertools.islice(reversed(cells.items()), new) if b
+            )
+            if index + new > self.bounds_c.shape[0] or first + pieces > self.pieces.shape[0]:
+                return
         for (cx, cy), bounds in itertools.islice(reversed(cells.items()), new):
             if not (0 <= cx < table.shape[0] and 0 <= cy < table.shape[1]):
                 continue  # left unseen: the kernel lets env.step take such moves
@@ -1093,9 +1119,10 @@ class FastRunner:
             k.CELL_UNSEEN,
             dtype=np.int64,
         )
-        self.bounds_c = np.zeros((64, 2), dtype=np.float64)
-        self.bounds_r = np.zeros((64, 2), dtype=np.int64)
-        self.pieces = np.zeros((256, 3), dtype=np.float64)
+        rows = max(64, min(self.cells.size, 1 << 16))  # room for most cells at once
+        self.bounds_c = np.zeros((rows, 2), dtype=np.float64)
+        self.bounds_r = np.zeros((rows, 2), dtype=np.int64)
+        self.pieces = np.zeros((4 * rows, 3), dtype=np.float64)
         self.nbounds = self.npieces = self.ncells = 0
         self._noise_list = None
         self.noise = np.zeros(2, dtype=np.float64)
@@ -1443,7 +1470,7 @@ class FastRunner:
             view = pools[array.dtype][start : start + size].reshape(array.shape)
             view[...] = array
             object.__setattr__(self, name, view)
-        return (pools[np.dtype(np.int64)], pools[np.dtype(np.float64)], lay)
+        return (pools[np.dtype(np.int64)], pools[np.dtype(np.float64)], lay, self._sweep_callback)
 
     def _dummy_arrays(self, k: Any) -> None:
         """Arrays of the kernel's types for a call that returns at once (the warm-up)."""
