@@ -19,6 +19,7 @@ a wide margin and lets the real env take the step otherwise (:func:`hypot_le`).
 
 from __future__ import annotations
 
+import ctypes
 import math
 
 import numpy as np
@@ -34,6 +35,13 @@ EV_POOL = 5
 EV_SWEEP = 6
 EV_SUMS = 7
 EV_PY_TAIL = 8
+EV_CALLBACK_ERROR = 9
+
+SWEEP_CALLBACK = ctypes.CFUNCTYPE(ctypes.c_int64)
+"""The driver's sweep, called from the kernel without returning (about 0.3 us a call against
+several for a return): it takes the move in ``fs[F_SW_X0:F_SW_Y1 + 1]``, calls
+``World.sweep_collides`` and writes the collision, the goal test and the safe ball; -1 when it
+raised (the driver re-raises the exception after the kernel returns EV_CALLBACK_ERROR)."""
 
 # Phases (st[I_PHASE]).
 PH_START = 0
@@ -1289,6 +1297,7 @@ def run_episode(
     bounds_c,
     bounds_r,
     pieces,
+    sweep,
 ):
     """Run (or resume) the episode until it ends or needs Python; returns the event."""
     while True:
@@ -1329,12 +1338,16 @@ def run_episode(
                 if code == 1:
                     st[I_KERNEL_STEPS] += 1
                 elif code == 2:
-                    st[I_PHASE] = PH_SWEEP_RESULT
-                    return EV_SWEEP
+                    if sweep() < 0:
+                        st[I_PHASE] = PH_STEP
+                        return EV_CALLBACK_ERROR
+                    st[I_PY_STEPS] += 1
+                    finish_step(st, fs)
                 else:
                     st[I_PHASE] = PH_STEP_RESULT
                     return EV_PY_STEP
             elif phase == PH_SWEEP_RESULT:
+                st[I_PY_STEPS] += 1
                 finish_step(st, fs)
             n = st[I_N]
             xs[n, 0] = fs[F_X]
@@ -1529,6 +1542,7 @@ def run_episode(
 # -- One call, few arguments ----------------------------------------------------------------
 
 POOLED_INT = (
+    "st",
     "li",
     "visits",
     "counts",
@@ -1543,6 +1557,7 @@ POOLED_INT = (
     "bounds_r",
 )
 POOLED_FLOAT = (
+    "fs",
     "lf",
     "q",
     "ubuf",
@@ -1550,6 +1565,8 @@ POOLED_FLOAT = (
     "xs",
     "rs",
     "errs",
+    "bufi",
+    "buff",
     "bsum",
     "moves",
     "noise",
@@ -1576,36 +1593,37 @@ def view2(pool, lay, i):
 
 
 @njit(cache=True)
-def run_pooled(st, fs, ipool, fpool, lay, bufi, buff):
+def run_pooled(ipool, fpool, lay, sweep):
     """:func:`run_episode` on the pools' views."""
     f = len(POOLED_INT)
     return run_episode(
-        st,
-        fs,
-        view2(ipool, lay, 0),  # li
-        view2(fpool, lay, f),  # lf
-        view2(fpool, lay, f + 1),  # q
-        view2(ipool, lay, 1),  # visits
-        view2(ipool, lay, 2),  # counts
-        view2(ipool, lay, 3),  # fifo
-        view1(fpool, lay, f + 2),  # ubuf
-        view2(fpool, lay, f + 3),  # grid_f
-        view2(ipool, lay, 4),  # grid_i
-        view2(fpool, lay, f + 4),  # xs
-        view1(fpool, lay, f + 5),  # rs
-        view1(ipool, lay, 5),  # held
-        view1(fpool, lay, f + 6),  # errs
-        bufi,
-        buff,
-        view2(ipool, lay, 6),  # bctr
-        view2(fpool, lay, f + 7),  # bsum
-        view1(ipool, lay, 7),  # free
-        view1(ipool, lay, 8),  # dirty
-        view2(ipool, lay, 9),  # log
-        view2(fpool, lay, f + 8),  # moves
-        view1(fpool, lay, f + 9),  # noise
-        view2(ipool, lay, 10),  # cells
-        view2(fpool, lay, f + 10),  # bounds_c
-        view2(ipool, lay, 11),  # bounds_r
-        view2(fpool, lay, f + 11),  # pieces
+        view1(ipool, lay, 0),  # st
+        view1(fpool, lay, f),  # fs
+        view2(ipool, lay, 1),  # li
+        view2(fpool, lay, f + 1),  # lf
+        view2(fpool, lay, f + 2),  # q
+        view2(ipool, lay, 2),  # visits
+        view2(ipool, lay, 3),  # counts
+        view2(ipool, lay, 4),  # fifo
+        view1(fpool, lay, f + 3),  # ubuf
+        view2(fpool, lay, f + 4),  # grid_f
+        view2(ipool, lay, 5),  # grid_i
+        view2(fpool, lay, f + 5),  # xs
+        view1(fpool, lay, f + 6),  # rs
+        view1(ipool, lay, 6),  # held
+        view1(fpool, lay, f + 7),  # errs
+        view2(fpool, lay, f + 8),  # bufi
+        view2(fpool, lay, f + 9),  # buff
+        view2(ipool, lay, 7),  # bctr
+        view2(fpool, lay, f + 10),  # bsum
+        view1(ipool, lay, 8),  # free
+        view1(ipool, lay, 9),  # dirty
+        view2(ipool, lay, 10),  # log
+        view2(fpool, lay, f + 11),  # moves
+        view1(fpool, lay, f + 12),  # noise
+        view2(ipool, lay, 11),  # cells
+        view2(fpool, lay, f + 13),  # bounds_c
+        view2(ipool, lay, 12),  # bounds_r
+        view2(fpool, lay, f + 14),  # pieces
+        sweep,
     )

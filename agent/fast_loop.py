@@ -522,6 +522,7 @@ def load_kernel() -> Any:
             runner = FastRunner.__new__(FastRunner)
             runner.k = fast_kernel
             runner._dummy_arrays(fast_kernel)
+            runner._sweep_callback = fast_kernel.SWEEP_CALLBACK(lambda: 0)
             event = fast_kernel.run_pooled(*runner._args())
             if event != fast_kernel.EV_DONE:
                 raise RuntimeError(f"the kernel's warm-up returned event {event}")
@@ -662,6 +663,8 @@ class FastRunner:
         """CPU seconds spent in the env's Python code (sweeps, ``env.step``) once a benchmark
         sets this to 0.0 (``bench/bench_agent.py``); None: not measured."""
         self._pending = False
+        self._error: BaseException | None = None
+        self._sweep_callback = kernel.SWEEP_CALLBACK(self._sweep_from_kernel)
         self.sums_events = [0, 0, 0]
         """Rings the kernel filled (exact sums asked of NumPy), for the tests: a leaf's own
         (index 0) and a child's at a split (index 2)."""
@@ -697,11 +700,11 @@ class FastRunner:
                 event = run(*self._args())
                 if event == k.EV_DONE:
                     break
-                if event == k.EV_SWEEP:
-                    self._sweep()
-                elif event == k.EV_SUMS:
+                if len(self.cell_table) != self.ncells:  # cells the sweeps could not import
+                    self._import_cells(self.cell_table)
+                if event == k.EV_SUMS:
                     self._exact_sums()
-                    self.sums_events[int(st[k.I_REC_STAGE])] += 1
+                    self.sums_events[int(self.st[k.I_REC_STAGE])] += 1
                 elif event == k.EV_PY_STEP:
                     self._python_step()
                 elif event == k.EV_RECORD:
@@ -714,6 +717,10 @@ class FastRunner:
                     self._make_room()
                 elif event == k.EV_PY_TAIL:
                     self._split_fails()
+                elif event == k.EV_CALLBACK_ERROR:
+                    error, self._error = self._error, None
+                    assert error is not None
+                    raise error
                 else:
                     raise RuntimeError(f"fast loop: unknown kernel event {event}")
         except BaseException:
@@ -723,6 +730,7 @@ class FastRunner:
             self._commit_env()
         if not self.lazy:
             self.sync()
+        st, fs = self.st, self.fs  # (views of the pools as they are now)
         terminated = bool(st[k.I_TERMINATED])
         epochs = int(st[k.I_EPOCHS])
         stats = EpisodeStats(
@@ -786,24 +794,36 @@ class FastRunner:
         move the kernel could not decide; the kernel does the rest of the step."""
         k, st, fs = self.k, self.st, self.fs
         x0, y0, x1, y1 = fs[k.F_SW_X0 : k.F_SW_Y1 + 1].tolist()
+        world = self.world
         if self.env_seconds is None:
-            collided = self.world.sweep_collides(x0, y0, x1, y1)
+            collided = world.sweep_collides(x0, y0, x1, y1)
         else:
             start = time.process_time()
-            collided = self.world.sweep_collides(x0, y0, x1, y1)
+            collided = world.sweep_collides(x0, y0, x1, y1)
             self.env_seconds += time.process_time() - start
         x, y = (x0, y0) if collided else (x1, y1)
         fs[k.F_OX] = x
         fs[k.F_OY] = y
-        st[k.I_COLLIDED] = collided
         gx, gy = self.goal
-        st[k.I_SUCCESS] = math.hypot(x - gx, y - gy) <= self.goal_radius
-        st[k.I_PY_STEPS] += 1
+        st[k.I_COLLIDED : k.I_SUCCESS + 1] = (
+            collided,
+            math.hypot(x - gx, y - gy) <= self.goal_radius,
+        )
         # the sweep renews the safe ball and may have seen a new cell (FastCore.safe_ball is
         # World._safe, FastCore.cells the live World._cells)
-        fs[k.F_SX], fs[k.F_SY], fs[k.F_SR] = self.world._safe
+        fs[k.F_SX : k.F_SR + 1] = world._safe
         if len(self.cell_table) != self.ncells:
-            self._import_cells(self.cell_table)
+            self._import_cells(self.cell_table, grow=False)
+
+    def _sweep_from_kernel(self) -> int:
+        """:meth:`_sweep` as the kernel's ctypes callback (an exception cannot cross it: it is
+        kept and raised when the kernel has returned)."""
+        try:
+            self._sweep()
+        except BaseException as error:
+            self._error = error
+            return -1
+        return 0
 
     def _record(self) -> None:
         """The tail of ``_end_epoch`` in Python (when the kernel does not run the split test):
@@ -919,31 +939,44 @@ class FastRunner:
         if self.chain.time_limit is not None:
             self.chain.time_limit._elapsed_steps = int(st[k.I_ELAPSED])  # type: ignore[assignment]
 
-    def _import_cells(self, cells: dict[tuple[int, int], Any]) -> None:
+    def _import_cells(self, cells: dict[tuple[int, int], Any], grow: bool = True) -> None:
+        """The world's new cell bounds into the kernel's tables. ``grow=False`` (inside the
+        kernel's call, where no array may be replaced): nothing when they do not fit, and the
+        next return to Python imports them."""
         k = self.k
         table = self.cells
         new = len(cells) - self.ncells
+        index, first = self.nbounds, self.npieces
+        if not grow:
+            pieces = sum(
+                len(b.pieces) for _, b in itertools.islice(reversed(cells.items()), new) if b
+            )
+            if index + new > self.bounds_c.shape[0] or first + pieces > self.pieces.shape[0]:
+                return
         for (cx, cy), bounds in itertools.islice(reversed(cells.items()), new):
             if not (0 <= cx < table.shape[0] and 0 <= cy < table.shape[1]):
                 continue  # left unseen: the kernel lets env.step take such moves
             if bounds is None:
                 table[cx, cy] = k.CELL_USELESS
                 continue
-            index = self.nbounds
             if index == self.bounds_c.shape[0]:
                 self.bounds_c = _resized(self.bounds_c, 2 * index)
                 self.bounds_r = _resized(self.bounds_r, 2 * index)
             pieces = bounds.pieces
-            first = self.npieces
-            if first + len(pieces) > self.pieces.shape[0]:
-                self.pieces = _resized(self.pieces, 2 * (first + len(pieces)))
-            if pieces:
-                self.pieces[first : first + len(pieces)] = pieces
-            self.bounds_c[index] = (bounds.cx, bounds.cy)
-            self.bounds_r[index] = (first, len(pieces))
-            self.npieces = first + len(pieces)
-            self.nbounds = index + 1
+            count = len(pieces)
+            if first + count > self.pieces.shape[0]:
+                self.pieces = _resized(self.pieces, 2 * (first + count))
+            if count:
+                self.pieces[first : first + count] = pieces
+            centres, ranges = self.bounds_c, self.bounds_r
+            centres[index, 0] = bounds.cx
+            centres[index, 1] = bounds.cy
+            ranges[index, 0] = first
+            ranges[index, 1] = count
             table[cx, cy] = index
+            index += 1
+            first += count
+        self.nbounds, self.npieces = index, first
         self.ncells = len(cells)
 
     # -- agent state ---------------------------------------------------------------------
@@ -1086,9 +1119,10 @@ class FastRunner:
             k.CELL_UNSEEN,
             dtype=np.int64,
         )
-        self.bounds_c = np.zeros((64, 2), dtype=np.float64)
-        self.bounds_r = np.zeros((64, 2), dtype=np.int64)
-        self.pieces = np.zeros((256, 3), dtype=np.float64)
+        rows = max(64, min(self.cells.size, 1 << 16))  # room for most cells at once
+        self.bounds_c = np.zeros((rows, 2), dtype=np.float64)
+        self.bounds_r = np.zeros((rows, 2), dtype=np.int64)
+        self.pieces = np.zeros((4 * rows, 3), dtype=np.float64)
         self.nbounds = self.npieces = self.ncells = 0
         self._noise_list = None
         self.noise = np.zeros(2, dtype=np.float64)
@@ -1418,8 +1452,8 @@ class FastRunner:
 
     def _build_args(self) -> tuple[Any, ...]:
         """``fast_kernel.run_pooled``'s arguments: the arrays of POOLED_INT and POOLED_FLOAT
-        copied into two pools (the attributes become views of them), their layout, and the
-        arrays that stay apart (the state vectors and the buffers' storage, the largest)."""
+        copied into two pools (the attributes become views of them) and their layout. Handlers
+        must read the arrays from ``self`` (a replaced array moves every view)."""
         k = self.k
         names = (*k.POOLED_INT, *k.POOLED_FLOAT)
         lay = np.zeros((len(names), 3), dtype=np.int64)
@@ -1436,15 +1470,7 @@ class FastRunner:
             view = pools[array.dtype][start : start + size].reshape(array.shape)
             view[...] = array
             object.__setattr__(self, name, view)
-        return (
-            self.st,
-            self.fs,
-            pools[np.dtype(np.int64)],
-            pools[np.dtype(np.float64)],
-            lay,
-            self.bufi,
-            self.buff,
-        )
+        return (pools[np.dtype(np.int64)], pools[np.dtype(np.float64)], lay, self._sweep_callback)
 
     def _dummy_arrays(self, k: Any) -> None:
         """Arrays of the kernel's types for a call that returns at once (the warm-up)."""
