@@ -575,10 +575,14 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         return None
 
     def close(self) -> None:
-        """Disconnect the pybullet client; calling it again does nothing."""
+        """Disconnect the pybullet clients (the world's and its query index's, if it has one);
+        calling it again does nothing."""
         client = getattr(self, "_client", -1)
         if client >= 0:
             self._client = -1
+            world = getattr(self, "world", None)
+            if world is not None:
+                world.close()
             try:
                 pb.disconnect(physicsClientId=client)
             except pb.error:  # already gone with its server

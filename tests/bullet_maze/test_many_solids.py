@@ -186,3 +186,13 @@ def test_the_query_index_answers_as_the_solid_bodies_in_one_call(spec: str) -> N
         assert world._index is None
     finally:
         env.close()
+
+
+def test_closing_the_env_disconnects_the_query_index_too() -> None:
+    env = BulletMazeEnv(maze=MAZE)
+    index = env.world._index
+    assert index is not None
+    assert pb.isConnected(physicsClientId=index.client)
+    env.close()
+    assert not pb.isConnected(physicsClientId=index.client)
+    env.close()  # a second close does nothing
