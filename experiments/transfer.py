@@ -250,9 +250,18 @@ def find_agents(
             "no agents given: name agent files or folders (--agents or [transfer] agents)"
         )
     agents: list[TransferAgent] = []
+    cache: dict[Path, list[TransferAgent]] = {}
     for source in sources:
         config_module.check_option_text(str(source), "agents")
-        agents += _agents_of(Path(source), allowed_env_ids, accept_code_change)
+        paths = [Path(source)]
+        if any(mark in str(source) for mark in "*?["):
+            pattern = Path(source)
+            anchor = Path(pattern.anchor) if pattern.is_absolute() else Path()
+            paths = sorted(anchor.glob(str(pattern.relative_to(anchor))))
+            if not paths:
+                raise ConfigError(f"agents: {source!r} matches no file or folder")
+        for path in paths:
+            agents += _agents_of(path, allowed_env_ids, accept_code_change, cache)
     keys = [a.key for a in agents]
     for key in keys:
         if keys.count(key) > 1:
@@ -263,10 +272,13 @@ def find_agents(
 
 
 def _agents_of(
-    path: Path, allowed: Collection[str], accept_code_change: bool
+    path: Path,
+    allowed: Collection[str],
+    accept_code_change: bool,
+    cache: dict[Path, list[TransferAgent]],
 ) -> list[TransferAgent]:
     if path.is_dir() and (path / runner.RUN_DIR).is_dir() and (path / runner.CONFIG_FILE).is_file():
-        return _experiment_agents(path, allowed, accept_code_change)
+        return _experiment_agents(path, allowed, accept_code_change, cache)
     if path.is_dir():
         for name in ("agent.npz", "policy.npz"):
             if (path / name).is_file():
@@ -282,7 +294,9 @@ def _agents_of(
         if root is not None and (root / runner.RUN_DIR).is_dir():
             name = str(path.relative_to(root / runner.RUN_DIR))[: -len(".agent.npz")]
             found = [
-                a for a in _experiment_agents(root, allowed, accept_code_change) if a.path == path
+                a
+                for a in _experiment_agents(root, allowed, accept_code_change, cache)
+                if a.path == path
             ]
             if not found:
                 raise ConfigError(
@@ -311,6 +325,17 @@ def _train_agent(path: Path, allowed: Collection[str]) -> TransferAgent:
 
 
 def _experiment_agents(
+    folder: Path,
+    allowed: Collection[str],
+    accept_code_change: bool,
+    cache: dict[Path, list[TransferAgent]],
+) -> list[TransferAgent]:
+    if folder.resolve() not in cache:
+        cache[folder.resolve()] = _read_experiment_agents(folder, allowed, accept_code_change)
+    return cache[folder.resolve()]
+
+
+def _read_experiment_agents(
     folder: Path, allowed: Collection[str], accept_code_change: bool
 ) -> list[TransferAgent]:
     config = config_module.load_config(folder / runner.CONFIG_FILE, allowed)

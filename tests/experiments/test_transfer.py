@@ -336,3 +336,13 @@ def test_a_killed_transfer_loses_no_finished_cell(trained: Path, tmp_path: Path)
     for path, data in kept.items():
         if path.suffix == ".json" or path.with_suffix(".json") in kept:
             assert path.read_bytes() == data  # finished cells untouched
+
+
+def test_agents_may_be_named_by_a_pattern(trained: Path, tmp_path: Path):
+    pattern = str(trained / "runs" / "*.agent.npz")
+    job = Transfer(_spec([pattern]), tmp_path / "t")
+    assert sorted(a.key for a in job.agents) == sorted(
+        a.key for a in Transfer(_spec([str(trained)]), tmp_path / "u").agents
+    )
+    with pytest.raises(ConfigError, match="matches no file"):
+        Transfer(_spec([str(trained / "runs" / "nothing*")]), tmp_path / "v")
