@@ -39,6 +39,7 @@ Behind it, one small module per concern:
 - :mod:`experiments.layout_sheet`: contact sheets of layouts with their shortest paths;
 - :mod:`experiments.transfer`: the transfer matrix (its file, agents, cells, storage, the job);
   :mod:`experiments.transfer_cell`: one cell and the task that evaluates it;
+  :mod:`experiments.transfer_state`: its spec, the verdicts on cells and the folder's state;
   :mod:`experiments.transfer_report`: its tables and heatmaps;
   :mod:`experiments.transfer_traces`: failing episodes replayed and drawn.
 

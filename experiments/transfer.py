@@ -27,11 +27,9 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import json
-import math
 import re
 import tomllib
-from collections.abc import Callable, Collection, Iterator, Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Collection, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -52,13 +50,19 @@ from experiments.transfer_cell import (
     evaluate_cell,
     safe_name,
 )
+from experiments.transfer_state import (
+    TRAIN_LEVEL,
+    CellCheck,
+    Conditions,
+    Skipped,
+    TransferSpec,
+    TransferState,
+)
 
 CELL_DIR = "cells"
 SPEC_FILE = "transfer.toml"
 SIDECAR_FORMAT = "bullet_maze.transfer_cell"
 SIDECAR_VERSION = 1
-TRAIN_LEVEL = "train"
-"""The level of an agent's own training condition (its environment exactly as trained)."""
 MAX_AGENTS = 10_000
 MAX_CONDITIONS = 1000
 MAX_EPISODES = 100_000
@@ -69,41 +73,6 @@ def _levels() -> tuple[str, ...]:
     from bullet_maze.perturbations import LEVELS
 
     return tuple(LEVELS)
-
-
-@dataclass(frozen=True)
-class Conditions:
-    """The grid: every robot x mode x level, on each agent's layout if it is in ``layouts``."""
-
-    robots: tuple[str, ...] = ("disc",)
-    modes: tuple[str, ...] = ("dynamic",)
-    layouts: tuple[str, ...] | None = None
-    """Layouts whose agents are evaluated (None: every agent's own)."""
-    levels: tuple[str, ...] = ("none",)
-
-
-@dataclass(frozen=True)
-class TransferSpec:
-    """What ``run.py transfer`` evaluates: agents, the grid, episodes per cell, the cap."""
-
-    name: str
-    agents: tuple[str, ...]
-    """Agent files, train folders or experiment folders."""
-    conditions: Conditions
-    episodes: int = 10
-    """Greedy episodes per agent and condition."""
-    max_episode_steps: int | None = None
-    """Episode cap of every cell (None: each agent's training cap)."""
-    source: str = "<options>"
-
-
-@dataclass(frozen=True)
-class Skipped:
-    """A condition that does not apply to an agent, and why."""
-
-    agent: TransferAgent
-    condition: Condition
-    reason: str
 
 
 # --- the spec -----------------------------------------------------------------------------
@@ -281,9 +250,18 @@ def find_agents(
             "no agents given: name agent files or folders (--agents or [transfer] agents)"
         )
     agents: list[TransferAgent] = []
+    cache: dict[Path, list[TransferAgent]] = {}
     for source in sources:
         config_module.check_option_text(str(source), "agents")
-        agents += _agents_of(Path(source), allowed_env_ids, accept_code_change)
+        paths = [Path(source)]
+        if any(mark in str(source) for mark in "*?["):
+            pattern = Path(source)
+            anchor = Path(pattern.anchor) if pattern.is_absolute() else Path()
+            paths = sorted(anchor.glob(str(pattern.relative_to(anchor))))
+            if not paths:
+                raise ConfigError(f"agents: {source!r} matches no file or folder")
+        for path in paths:
+            agents += _agents_of(path, allowed_env_ids, accept_code_change, cache)
     keys = [a.key for a in agents]
     for key in keys:
         if keys.count(key) > 1:
@@ -294,10 +272,13 @@ def find_agents(
 
 
 def _agents_of(
-    path: Path, allowed: Collection[str], accept_code_change: bool
+    path: Path,
+    allowed: Collection[str],
+    accept_code_change: bool,
+    cache: dict[Path, list[TransferAgent]],
 ) -> list[TransferAgent]:
     if path.is_dir() and (path / runner.RUN_DIR).is_dir() and (path / runner.CONFIG_FILE).is_file():
-        return _experiment_agents(path, allowed, accept_code_change)
+        return _experiment_agents(path, allowed, accept_code_change, cache)
     if path.is_dir():
         for name in ("agent.npz", "policy.npz"):
             if (path / name).is_file():
@@ -313,7 +294,9 @@ def _agents_of(
         if root is not None and (root / runner.RUN_DIR).is_dir():
             name = str(path.relative_to(root / runner.RUN_DIR))[: -len(".agent.npz")]
             found = [
-                a for a in _experiment_agents(root, allowed, accept_code_change) if a.path == path
+                a
+                for a in _experiment_agents(root, allowed, accept_code_change, cache)
+                if a.path == path
             ]
             if not found:
                 raise ConfigError(
@@ -342,6 +325,17 @@ def _train_agent(path: Path, allowed: Collection[str]) -> TransferAgent:
 
 
 def _experiment_agents(
+    folder: Path,
+    allowed: Collection[str],
+    accept_code_change: bool,
+    cache: dict[Path, list[TransferAgent]],
+) -> list[TransferAgent]:
+    if folder.resolve() not in cache:
+        cache[folder.resolve()] = _read_experiment_agents(folder, allowed, accept_code_change)
+    return cache[folder.resolve()]
+
+
+def _read_experiment_agents(
     folder: Path, allowed: Collection[str], accept_code_change: bool
 ) -> list[TransferAgent]:
     config = config_module.load_config(folder / runner.CONFIG_FILE, allowed)
@@ -526,17 +520,6 @@ def write_cell(out: Path, result: CellResult, inputs: Mapping[str, Any]) -> None
     store.atomic_write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True) + "\n")
 
 
-@dataclass(frozen=True)
-class CellCheck:
-    """What :func:`check_cell` found: ``missing``, ``valid``, ``invalid`` (recompute it),
-    ``changed`` (other inputs: refused) or ``code`` (only the code version differs)."""
-
-    status: str
-    reason: str = ""
-    columns: dict[str, np.ndarray] | None = None
-    meta: dict[str, Any] | None = None
-
-
 def check_cell(out: Path, cell: Cell, expected: Mapping[str, Any]) -> CellCheck:
     """Verify a stored cell against its sidecar and the inputs it should have."""
     csv_path, meta_path = cell_paths(out, cell.name)
@@ -609,34 +592,6 @@ def _read_cell(
 
 
 # --- the job ------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class TransferState:
-    """The planned cells with the verdict on each, and the conditions that do not apply."""
-
-    cells: tuple[Cell, ...]
-    checks: Mapping[str, CellCheck]
-    skipped: tuple[Skipped, ...]
-    accept_code_change: bool = False
-
-    def _with(self, *statuses: str) -> list[Cell]:
-        return [c for c in self.cells if self.checks[c.name].status in statuses]
-
-    @property
-    def finished(self) -> list[Cell]:
-        """Verified cells that count."""
-        return self._with("valid", "code") if self.accept_code_change else self._with("valid")
-
-    @property
-    def pending(self) -> list[Cell]:
-        """Cells to compute: missing, or not verifying."""
-        return self._with("missing", "invalid")
-
-    @property
-    def refused(self) -> list[Cell]:
-        """Verified cells computed from other inputs (and other code, unless accepted)."""
-        return self._with("changed") if self.accept_code_change else self._with("changed", "code")
 
 
 class _Expected:
@@ -817,7 +772,7 @@ class Transfer:
             picks = failing_cells(state, limit=traces)
             if picks:
                 failures = draw_failures(picks, self.out / "failures.png", state)
-        return write_transfer_report(self, state, failures)
+        return write_transfer_report(self.spec, self.agents, self.out, state, failures)
 
 
 def refuse_mixing(state: TransferState, out: Path) -> None:
@@ -839,16 +794,3 @@ def refuse_mixing(state: TransferState, out: Path) -> None:
         f"{out}: {len(refused)} finished cell(s) were computed from other inputs than this "
         "transfer's; they are not mixed with new ones:\n" + "\n".join(lines) + f"\n{advice}"
     )
-
-
-def iter_finished(state: TransferState) -> Iterator[tuple[Cell, CellCheck]]:
-    """The finished cells with their verified data, in plan order."""
-    for cell in state.finished:
-        yield cell, state.checks[cell.name]
-
-
-def steps_ratio(steps: np.ndarray, optimal: float) -> float:
-    """Mean steps over the episodes (a capped episode counts its cap) / the optimum."""
-    if not math.isfinite(optimal) or optimal <= 0:
-        return math.nan
-    return float(np.mean(steps)) / optimal

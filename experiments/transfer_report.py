@@ -17,16 +17,20 @@ from collections import defaultdict
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from experiments import store
 from experiments.statistics import bootstrap_ci
-from experiments.transfer import TRAIN_LEVEL, TransferState, iter_finished, steps_ratio
-
-if TYPE_CHECKING:
-    from experiments.transfer import Transfer
+from experiments.transfer_cell import TransferAgent
+from experiments.transfer_state import (
+    TRAIN_LEVEL,
+    TransferSpec,
+    TransferState,
+    iter_finished,
+    steps_ratio,
+)
 
 CELL_COLUMNS = (
     "group",
@@ -168,10 +172,13 @@ def summarize_cells(rows: Sequence[CellRow], seed: int = 0) -> list[SummaryRow]:
 
 
 def write_transfer_report(
-    transfer: Transfer, state: TransferState, failures: Path | None = None
+    spec: TransferSpec,
+    agents: Sequence[TransferAgent],
+    out: Path,
+    state: TransferState,
+    failures: Path | None = None,
 ) -> TransferReport:
-    """Write ``cells.csv``, ``summary.csv``, the heatmaps and ``report.md`` into the folder."""
-    out = transfer.out
+    """Write ``cells.csv``, ``summary.csv``, the heatmaps and ``report.md`` into ``out``."""
     rows = cell_rows(state)
     summary = summarize_cells(rows)
     store.atomic_write_text(out / "cells.csv", _csv(CELL_COLUMNS, [_values(r) for r in rows]))
@@ -225,7 +232,8 @@ def write_transfer_report(
         skipped.setdefault((item.agent.group, item.condition.name), item.reason)
     skipped_rows = tuple((group, name, reason) for (group, name), reason in skipped.items())
     path = out / "report.md"
-    store.atomic_write_text(path, _markdown(transfer, state, summary, figures, skipped_rows))
+    text = _markdown(spec, agents, state, summary, figures, skipped_rows)
+    store.atomic_write_text(path, text)
     return TransferReport(path, tuple(rows), tuple(summary), figures, skipped_rows)
 
 
@@ -314,13 +322,13 @@ def _gap(values: tuple[float, float, float]) -> str:
 
 
 def _markdown(
-    transfer: Transfer,
+    spec: TransferSpec,
+    agents: Sequence[TransferAgent],
     state: TransferState,
     summary: Sequence[SummaryRow],
     figures: Sequence[Path],
     skipped: Sequence[tuple[str, str, str]],
 ) -> str:
-    spec = transfer.spec
     grid = spec.conditions
     cap = (
         spec.max_episode_steps
@@ -330,7 +338,7 @@ def _markdown(
     lines = [
         f"# Transfer: {spec.name}",
         "",
-        f"- agents: {len(transfer.agents)} ({len({a.group for a in transfer.agents})} training "
+        f"- agents: {len(agents)} ({len({a.group for a in agents})} training "
         f"recipes); cells finished: {len(state.finished)} of {len(state.cells)}",
         f"- conditions: robots {', '.join(grid.robots)}; modes {', '.join(grid.modes)}; levels "
         f"{', '.join(grid.levels)}; layouts "

@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 
 from experiments import factory
-from experiments.transfer import TransferState
 from experiments.transfer_cell import Cell
+from experiments.transfer_state import TransferState
 
 
 @dataclass(frozen=True)

@@ -292,3 +292,57 @@ def test_failing_episodes_are_replayed_exactly_and_drawn(trained: Path, tmp_path
     report = job.report(traces=2)
     assert (out / "failures.png").is_file()
     assert "failures.png" in report.path.read_text()
+
+
+def test_ray_backend_gives_the_same_cells(trained: Path, tmp_path: Path):
+    pytest.importorskip("ray")
+    from experiments.backends import make_backend
+
+    data = copy.deepcopy(SPEC)
+    data["transfer"]["agents"] = [str(trained)]
+    data["conditions"] = {"robots": ["disc"], "modes": ["dynamic"], "levels": ["strong"]}
+    spec = parse_spec(data, "t.toml")
+    Transfer(spec, tmp_path / "serial").run(SerialBackend())
+    Transfer(spec, tmp_path / "ray").run(make_backend("ray", 2))
+    assert _files(tmp_path / "ray") == _files(tmp_path / "serial")
+
+
+def test_a_killed_transfer_loses_no_finished_cell(trained: Path, tmp_path: Path):
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    out = tmp_path / "t"
+    argv = [sys.executable, str(Path(run.__file__)), "transfer", "--agents", str(trained)]
+    argv += ["--robots", "disc,husky", "--modes", "dynamic", "--levels", "none,strong"]
+    argv += ["--episodes", "2", "--max-episode-steps", "25", "--out", str(out)]
+    argv += ["--backend", "serial", "--no-progress"]
+    env = {**os.environ, "PYTHONPATH": str(Path(run.__file__).parent)}
+    process = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 60
+    while not list((out / "cells").rglob("*.json")) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    process.send_signal(signal.SIGKILL)
+    process.wait()
+    kept = {p: p.read_bytes() for p in (out / "cells").rglob("*.*")}
+    assert kept, "the transfer was killed before its first cell"
+    finished = len([p for p in kept if p.suffix == ".json"])
+    assert finished < 10, "the transfer finished before it was killed"
+    result = subprocess.run(argv, env=env, capture_output=True, text=True, check=True)
+    assert f"{finished} already done" in result.stdout
+    assert f"computed {10 - finished} cells" in result.stdout
+    for path, data in kept.items():
+        if path.suffix == ".json" or path.with_suffix(".json") in kept:
+            assert path.read_bytes() == data  # finished cells untouched
+
+
+def test_agents_may_be_named_by_a_pattern(trained: Path, tmp_path: Path):
+    pattern = str(trained / "runs" / "*.agent.npz")
+    job = Transfer(_spec([pattern]), tmp_path / "t")
+    assert sorted(a.key for a in job.agents) == sorted(
+        a.key for a in Transfer(_spec([str(trained)]), tmp_path / "u").agents
+    )
+    with pytest.raises(ConfigError, match="matches no file"):
+        Transfer(_spec([str(trained / "runs" / "nothing*")]), tmp_path / "v")
