@@ -789,10 +789,11 @@ class FastRunner:
         st[k.I_PY_STEPS] += 1
         self._import_env()
 
-    def _sweep(self) -> None:
+    def _sweep(self) -> int:
         """``env.step``'s call ``world.sweep_collides(x0, y0, x1, y1)`` and goal test, for a
-        move the kernel could not decide; the kernel does the rest of the step."""
-        k, st, fs = self.k, self.st, self.fs
+        move the kernel could not decide (called from the kernel): returns collided + 2 *
+        success; the kernel does the rest of the step."""
+        k, fs = self.k, self.fs
         x0, y0, x1, y1 = fs[k.F_SW_X0 : k.F_SW_Y1 + 1].tolist()
         world = self.world
         if self.env_seconds is None:
@@ -801,29 +802,29 @@ class FastRunner:
             start = time.process_time()
             collided = world.sweep_collides(x0, y0, x1, y1)
             self.env_seconds += time.process_time() - start
-        x, y = (x0, y0) if collided else (x1, y1)
-        fs[k.F_OX] = x
-        fs[k.F_OY] = y
         gx, gy = self.goal
-        st[k.I_COLLIDED : k.I_SUCCESS + 1] = (
-            collided,
-            math.hypot(x - gx, y - gy) <= self.goal_radius,
-        )
+        if collided:
+            success = math.hypot(x0 - gx, y0 - gy) <= self.goal_radius
+        else:
+            success = math.hypot(x1 - gx, y1 - gy) <= self.goal_radius
         # the sweep renews the safe ball and may have seen a new cell (FastCore.safe_ball is
         # World._safe, FastCore.cells the live World._cells)
-        fs[k.F_SX : k.F_SR + 1] = world._safe
+        sx, sy, sr = world._safe
+        fs[k.F_SX] = sx
+        fs[k.F_SY] = sy
+        fs[k.F_SR] = sr
         if len(self.cell_table) != self.ncells:
             self._import_cells(self.cell_table, grow=False)
+        return (1 if collided else 0) + (2 if success else 0)
 
     def _sweep_from_kernel(self) -> int:
         """:meth:`_sweep` as the kernel's ctypes callback (an exception cannot cross it: it is
         kept and raised when the kernel has returned)."""
         try:
-            self._sweep()
+            return self._sweep()
         except BaseException as error:
             self._error = error
             return -1
-        return 0
 
     def _record(self) -> None:
         """The tail of ``_end_epoch`` in Python (when the kernel does not run the split test):
@@ -947,12 +948,8 @@ class FastRunner:
         table = self.cells
         new = len(cells) - self.ncells
         index, first = self.nbounds, self.npieces
-        if not grow:
-            pieces = sum(
-                len(b.pieces) for _, b in itertools.islice(reversed(cells.items()), new) if b
-            )
-            if index + new > self.bounds_c.shape[0] or first + pieces > self.pieces.shape[0]:
-                return
+        if not grow and index + new > self.bounds_c.shape[0]:
+            return
         for (cx, cy), bounds in itertools.islice(reversed(cells.items()), new):
             if not (0 <= cx < table.shape[0] and 0 <= cy < table.shape[1]):
                 continue  # left unseen: the kernel lets env.step take such moves
@@ -965,6 +962,9 @@ class FastRunner:
             pieces = bounds.pieces
             count = len(pieces)
             if first + count > self.pieces.shape[0]:
+                if not grow:  # ncells stays: the next return imports them all (again)
+                    self.nbounds, self.npieces = index, first
+                    return
                 self.pieces = _resized(self.pieces, 2 * (first + count))
             if count:
                 self.pieces[first : first + count] = pieces
