@@ -675,6 +675,7 @@ def test_an_exception_in_a_sweep_reaches_the_caller() -> None:
             return original(*args)
 
         world.sweep_collides = failing
+        assert isinstance(fast_loop.episode_runner(agent, env), fast_loop.FastRunner)
         with pytest.raises(KeyboardInterrupt):
             agent.learn(env, 3, reset_seed=1)
         assert calls[0] == 20
