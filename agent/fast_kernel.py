@@ -1338,9 +1338,15 @@ def run_episode(
                 if code == 1:
                     st[I_KERNEL_STEPS] += 1
                 elif code == 2:
-                    if sweep() < 0:
+                    result = sweep()
+                    if result < 0:
                         st[I_PHASE] = PH_STEP
                         return EV_CALLBACK_ERROR
+                    collided = result & 1
+                    st[I_COLLIDED] = collided
+                    st[I_SUCCESS] = result >> 1
+                    fs[F_OX] = fs[F_SW_X0] if collided else fs[F_SW_X1]
+                    fs[F_OY] = fs[F_SW_Y0] if collided else fs[F_SW_Y1]
                     st[I_PY_STEPS] += 1
                     finish_step(st, fs)
                 else:

@@ -664,7 +664,7 @@ class FastRunner:
         sets this to 0.0 (``bench/bench_agent.py``); None: not measured."""
         self._pending = False
         self._error: BaseException | None = None
-        self._sweep_callback = kernel.SWEEP_CALLBACK(self._sweep_from_kernel)
+        self._sweep_callback = kernel.SWEEP_CALLBACK(self._sweep_function())
         self.sums_events = [0, 0, 0]
         """Rings the kernel filled (exact sums asked of NumPy), for the tests: a leaf's own
         (index 0) and a child's at a split (index 2)."""
@@ -789,41 +789,45 @@ class FastRunner:
         st[k.I_PY_STEPS] += 1
         self._import_env()
 
-    def _sweep(self) -> None:
-        """``env.step``'s call ``world.sweep_collides(x0, y0, x1, y1)`` and goal test, for a
-        move the kernel could not decide; the kernel does the rest of the step."""
-        k, st, fs = self.k, self.st, self.fs
-        x0, y0, x1, y1 = fs[k.F_SW_X0 : k.F_SW_Y1 + 1].tolist()
-        world = self.world
-        if self.env_seconds is None:
-            collided = world.sweep_collides(x0, y0, x1, y1)
-        else:
-            start = time.process_time()
-            collided = world.sweep_collides(x0, y0, x1, y1)
-            self.env_seconds += time.process_time() - start
-        x, y = (x0, y0) if collided else (x1, y1)
-        fs[k.F_OX] = x
-        fs[k.F_OY] = y
-        gx, gy = self.goal
-        st[k.I_COLLIDED : k.I_SUCCESS + 1] = (
-            collided,
-            math.hypot(x - gx, y - gy) <= self.goal_radius,
-        )
-        # the sweep renews the safe ball and may have seen a new cell (FastCore.safe_ball is
-        # World._safe, FastCore.cells the live World._cells)
-        fs[k.F_SX : k.F_SR + 1] = world._safe
-        if len(self.cell_table) != self.ncells:
-            self._import_cells(self.cell_table, grow=False)
+    def _sweep_function(self) -> Callable[[], int]:
+        """The sweep the kernel calls (through a ctypes callback) for a move it could not
+        decide: ``env.step``'s call ``world.sweep_collides(x0, y0, x1, y1)`` and goal test, the
+        safe ball and any new cell written into the kernel's arrays; returns collided + 2 *
+        success (the kernel does the rest of the step), -1 when it raised (the exception cannot
+        cross the callback: it is kept and raised once the kernel has returned)."""
+        k = self.k
+        first, last = k.F_SW_X0, k.F_SW_Y1 + 1
+        sx, sy, sr = k.F_SX, k.F_SY, k.F_SR
+        hypot, clock = math.hypot, time.process_time
+        runner = self
 
-    def _sweep_from_kernel(self) -> int:
-        """:meth:`_sweep` as the kernel's ctypes callback (an exception cannot cross it: it is
-        kept and raised when the kernel has returned)."""
-        try:
-            self._sweep()
-        except BaseException as error:
-            self._error = error
-            return -1
-        return 0
+        def sweep() -> int:
+            try:
+                fs = runner.fs
+                x0, y0, x1, y1 = fs[first:last].tolist()
+                world = runner.world
+                if runner.env_seconds is None:
+                    collided = world.sweep_collides(x0, y0, x1, y1)
+                else:
+                    start = clock()
+                    collided = world.sweep_collides(x0, y0, x1, y1)
+                    runner.env_seconds += clock() - start
+                gx, gy = runner.goal
+                if collided:
+                    success = hypot(x0 - gx, y0 - gy) <= runner.goal_radius
+                else:
+                    success = hypot(x1 - gx, y1 - gy) <= runner.goal_radius
+                # the sweep renews the safe ball and may have seen a new cell (FastCore's
+                # safe_ball is World._safe, its cells the live World._cells)
+                fs[sx], fs[sy], fs[sr] = world._safe
+                if len(runner.cell_table) != runner.ncells:
+                    runner._import_cells(runner.cell_table, grow=False)
+                return (2 if success else 0) + (1 if collided else 0)
+            except BaseException as error:
+                runner._error = error
+                return -1
+
+        return sweep
 
     def _record(self) -> None:
         """The tail of ``_end_epoch`` in Python (when the kernel does not run the split test):
@@ -947,12 +951,8 @@ class FastRunner:
         table = self.cells
         new = len(cells) - self.ncells
         index, first = self.nbounds, self.npieces
-        if not grow:
-            pieces = sum(
-                len(b.pieces) for _, b in itertools.islice(reversed(cells.items()), new) if b
-            )
-            if index + new > self.bounds_c.shape[0] or first + pieces > self.pieces.shape[0]:
-                return
+        if not grow and index + new > self.bounds_c.shape[0]:
+            return
         for (cx, cy), bounds in itertools.islice(reversed(cells.items()), new):
             if not (0 <= cx < table.shape[0] and 0 <= cy < table.shape[1]):
                 continue  # left unseen: the kernel lets env.step take such moves
@@ -965,9 +965,15 @@ class FastRunner:
             pieces = bounds.pieces
             count = len(pieces)
             if first + count > self.pieces.shape[0]:
+                if not grow:  # ncells stays: the next return imports them all (again)
+                    self.nbounds, self.npieces = index, first
+                    return
                 self.pieces = _resized(self.pieces, 2 * (first + count))
-            if count:
-                self.pieces[first : first + count] = pieces
+            rows = self.pieces
+            for j, (distance, nx, ny) in enumerate(pieces, first):
+                rows[j, 0] = distance
+                rows[j, 1] = nx
+                rows[j, 2] = ny
             centres, ranges = self.bounds_c, self.bounds_r
             centres[index, 0] = bounds.cx
             centres[index, 1] = bounds.cy

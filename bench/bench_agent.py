@@ -173,6 +173,7 @@ def fast_agent_cost(strategy: str, leaves: int, episodes: int, rounds: int) -> N
         for i in range(episodes):
             obs, _ = env.reset(seed=1 if i == 0 else None)
             out.append(runner(env, obs))
+        runner.sync()  # what learn does at its end: the agent written back
         seconds = time.process_time() - t0
         assert out == history
         env.close()

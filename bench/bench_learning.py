@@ -89,6 +89,7 @@ def fast_ratios(episodes: int, rounds: int) -> None:
 
     fast_loop.load_kernel()  # compiled or loaded from numba's cache before any clock runs
     names = [spec.name for spec in load_config("paper_fig4").strategies]
+    timed_learning(names[0], 1, True)  # the fingerprints of the mirrored code, checked once
     ratios: dict[str, list[float]] = {name: [] for name in names}
     rates: dict[str, list[tuple[float, float]]] = {name: [] for name in names}
     steps: dict[str, int] = {}

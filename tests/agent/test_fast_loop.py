@@ -658,3 +658,26 @@ def test_density_crossing_agrees_with_python() -> None:
         expected = density_crossing(m1, v1, n1, m2, v2, n2)
         found, root = kernel.density_crossing(m1, v1, n1, m2, v2, n2)
         assert (root if found else None) == expected
+
+
+def test_an_exception_in_a_sweep_reaches_the_caller() -> None:
+    env = _env()
+    try:
+        agent = fig4_agent("adaptive+tabu")(env)
+        world = env.unwrapped.world
+        original = world.sweep_collides
+        calls = [0]
+
+        def failing(*args: float) -> bool:  # called by the kernel through its ctypes callback
+            calls[0] += 1
+            if calls[0] == 20:
+                raise KeyboardInterrupt
+            return original(*args)
+
+        world.sweep_collides = failing
+        assert isinstance(fast_loop.episode_runner(agent, env), fast_loop.FastRunner)
+        with pytest.raises(KeyboardInterrupt):
+            agent.learn(env, 3, reset_seed=1)
+        assert calls[0] == 20
+    finally:
+        env.close()
