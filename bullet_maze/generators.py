@@ -249,21 +249,7 @@ def _draw_rooms(rng: np.random.Generator, v: dict[str, float], spec: str) -> Maz
             f"most room - wall = {room - wall:g}"
         )
     # A random spanning tree of the rooms (randomised depth-first search), then extra doors.
-    seen, stack, doors = {(0, 0)}, [(0, 0)], set()
-    while stack:
-        r, c = stack[-1]
-        around = [
-            (r + dr, c + dc)
-            for dr, dc in ((1, 0), (-1, 0), (0, 1), (0, -1))
-            if 0 <= r + dr < rows and 0 <= c + dc < cols and (r + dr, c + dc) not in seen
-        ]
-        if not around:
-            stack.pop()
-            continue
-        nxt = around[int(rng.integers(len(around)))]
-        doors.add(frozenset(((r, c), nxt)))
-        seen.add(nxt)
-        stack.append(nxt)
+    doors = _spanning_tree(rows, cols, rng)
     adjacent = [frozenset(((r, c), (r, c + 1))) for r in range(rows) for c in range(cols - 1)]
     adjacent += [frozenset(((r, c), (r + 1, c))) for r in range(rows - 1) for c in range(cols)]
     for pair in adjacent:
@@ -411,24 +397,8 @@ def _draw_maze(rng: np.random.Generator, v: dict[str, float], spec: str) -> Maze
     width, height = _arena("maze", cols * cell, rows * cell, "cols * cell and rows * cell")
     passage = _passage(v, (width, height))
     _at_least("maze", "cell", cell, passage + wall, "the wall, the robot's diameter, two cells")
-    # Recursive backtracking with an explicit stack: a random walk that carves into unvisited
-    # cells and backs up at dead ends, which makes a spanning tree of the cells.
-    carved: set[frozenset[tuple[int, int]]] = set()
-    seen, stack = {(0, 0)}, [(0, 0)]
-    while stack:
-        r, c = stack[-1]
-        around = [
-            (r + dr, c + dc)
-            for dr, dc in ((1, 0), (-1, 0), (0, 1), (0, -1))
-            if 0 <= r + dr < rows and 0 <= c + dc < cols and (r + dr, c + dc) not in seen
-        ]
-        if not around:
-            stack.pop()
-            continue
-        nxt = around[int(rng.integers(len(around)))]
-        carved.add(frozenset(((r, c), nxt)))
-        seen.add(nxt)
-        stack.append(nxt)
+    # Recursive backtracking: a spanning tree of the cells, each tree edge a carved passage.
+    carved = _spanning_tree(rows, cols, rng)
     walls = []
     for axis, lines, cells, total in ((0, cols, rows, height), (1, rows, cols, width)):
         for k in range(1, lines):
@@ -518,3 +488,28 @@ FAMILIES: dict[str, Family] = {
     ),
 }
 """The layout families by name."""
+
+
+def _spanning_tree(
+    rows: int, cols: int, rng: np.random.Generator
+) -> set[frozenset[tuple[int, int]]]:
+    """A random spanning tree of a ``rows`` x ``cols`` grid of cells by recursive backtracking
+    with an explicit stack (a random walk that moves into unvisited neighbours and backs up at
+    dead ends), as the set of its edges (pairs of adjacent cells); one draw per move."""
+    edges: set[frozenset[tuple[int, int]]] = set()
+    seen, stack = {(0, 0)}, [(0, 0)]
+    while stack:
+        r, c = stack[-1]
+        around = [
+            (r + dr, c + dc)
+            for dr, dc in ((1, 0), (-1, 0), (0, 1), (0, -1))
+            if 0 <= r + dr < rows and 0 <= c + dc < cols and (r + dr, c + dc) not in seen
+        ]
+        if not around:
+            stack.pop()
+            continue
+        nxt = around[int(rng.integers(len(around)))]
+        edges.add(frozenset(((r, c), nxt)))
+        seen.add(nxt)
+        stack.append(nxt)
+    return edges

@@ -85,12 +85,25 @@ def stratified_estimate(
     if not resampled:
         return Estimate(value, value, value)
 
-    def pooled_statistic(*samples: np.ndarray, axis: int = -1) -> np.ndarray:
+    low, high = _pooled_interval(resampled, fixed, statistic, seed)
+    return Estimate(value, float(low), float(high))
+
+
+def _pooled_interval(
+    resampled: list[np.ndarray],
+    fixed: list[np.ndarray],
+    statistic: Callable[[np.ndarray], np.ndarray],
+    seed: Seed,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The 95% percentile bootstrap interval of ``statistic`` of the pooled scores, each task's
+    runs resampled within the task (stratified) and the single-run tasks held fixed."""
+
+    def pooled(*samples: np.ndarray, axis: int = -1) -> np.ndarray:
         return statistic(_pooled(fixed, samples, axis))
 
     result = scipy_stats.bootstrap(
         tuple(resampled),
-        pooled_statistic,
+        pooled,
         n_resamples=RESAMPLES,
         confidence_level=CONFIDENCE,
         method="percentile",
@@ -99,7 +112,7 @@ def stratified_estimate(
         rng=np.random.default_rng(seed),
     )
     interval = result.confidence_interval
-    return Estimate(value, float(interval.low), float(interval.high))
+    return interval.low, interval.high
 
 
 def iqm(scores: Scores, seed: Seed) -> Estimate:
@@ -126,21 +139,8 @@ def profile(
     if not resampled:
         return value, value.copy(), value.copy()
 
-    def pooled_fraction(*samples: np.ndarray, axis: int = -1) -> np.ndarray:
-        return fraction(_pooled(fixed, samples, axis))
-
-    result = scipy_stats.bootstrap(
-        tuple(resampled),
-        pooled_fraction,
-        n_resamples=RESAMPLES,
-        confidence_level=CONFIDENCE,
-        method="percentile",
-        vectorized=True,
-        batch=BATCH,
-        rng=np.random.default_rng(seed),
-    )
-    interval = result.confidence_interval
-    return value, np.asarray(interval.low), np.asarray(interval.high)
+    low, high = _pooled_interval(resampled, fixed, fraction, seed)
+    return value, np.asarray(low), np.asarray(high)
 
 
 def _improvement(x: np.ndarray, y: np.ndarray, lower_is_better: bool) -> np.ndarray:
