@@ -642,7 +642,10 @@ class AckermannDrive(Drive):
 
     def _manoeuvre(self) -> Manoeuvre:
         if self.manoeuvre is None:
-            raise ValueError("a car cannot realise a displacement (Move) command without a manoeuvre")
+            raise ValueError(
+                "a car without a manoeuvre (AckermannDrive.manoeuvre) cannot realise a "
+                "displacement (Move) command"
+            )
         return self.manoeuvre
 
     def reach(self, command: Command) -> float:
