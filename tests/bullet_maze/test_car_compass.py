@@ -5,6 +5,7 @@ it with a collision in both modes, the same seed gives the same rollout bit for 
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 
@@ -53,7 +54,8 @@ def test_a_step_across_the_heading_is_a_zig_zag_and_along_it_a_drive() -> None:
     assert plan(math.pi / 2, Move(0.0, 5.0), R) == [(5.0, 0.0)]
     # A little sideways noise on a step along the heading: one lane change and a straight.
     along = plan(math.pi / 2, Move(0.3, 5.0), R)
-    assert len(along) == 3 and along[2].distance == pytest.approx(5.0 - lane_change_advance(0.3, R))
+    assert len(along) == 3
+    assert along[2].distance == pytest.approx(5.0 - lane_change_advance(0.3, R))
     assert plan(0.0, Move(0.0, 0.0), R) == []
 
 
@@ -77,7 +79,7 @@ def test_the_racecar_takes_compass_actions_and_keeps_its_heading_kinematically(
         obs, _ = env.reset(seed=0, options={"start": (150.0, 150.0, math.pi / 2)})
         new, _, _, _, info = env.step(action)
         assert not info["collision"]
-        assert new[:2] == pytest.approx(obs[:2] + (dx, dy), abs=1e-9)
+        assert new[:2] == pytest.approx(obs[:2] + np.array((dx, dy)), abs=1e-9)
         assert new[2] == pytest.approx(math.pi / 2, abs=1e-12)
 
 
@@ -89,29 +91,31 @@ def test_each_intent_is_reached_dynamically_through_the_wheels_and_hinges(
     drive = robot.drive
     wheels = [w.index for w in drive.driven]
     hinges = [h.index for h in drive.hinges]
+    turned: dict[int, list[float]] = {}
+    record = CarCompassController._steps
+
+    def watched(self: CarCompassController, count: int) -> bool:
+        for j in hinges:
+            turned[j].append(pb.getJointState(robot.body_id, j, robot.client)[0])
+        return record(self, count)
+
     for action, (dx, dy) in INTENTS.items():
         obs, _ = env.reset(seed=0, options={"start": (150.0, 150.0, math.pi / 2)})
-        turned = {j: [] for j in hinges}
+        turned.update({j: [] for j in hinges})
         rolled_before = [pb.getJointState(robot.body_id, w, robot.client)[0] for w in wheels]
-        record = CarCompassController._steps
-
-        def watched(self: CarCompassController, count: int) -> bool:
-            for j in hinges:
-                turned[j].append(pb.getJointState(robot.body_id, j, robot.client)[0])
-            return record(self, count)
-
         drive.manoeuvre.controller._steps = watched.__get__(drive.manoeuvre.controller)
         new, _, _, _, info = env.step(action)
         del drive.manoeuvre.controller._steps
         assert not info["collision"]
         # The stated bound: within 0.5 units of the intent, the heading within 0.25 rad.
-        assert np.hypot(*(new[:2] - obs[:2] - (dx, dy))) < 0.5
+        assert np.hypot(*(new[:2] - obs[:2] - np.array((dx, dy)))) < 0.5
         assert abs(new[2] - obs[2]) < 0.25
         rolled = [pb.getJointState(robot.body_id, w, robot.client)[0] for w in wheels]
         assert all(abs(a - b) > 1.0 for a, b in zip(rolled, rolled_before, strict=True))
         if action in (Action.LEFT, Action.RIGHT):  # the hinges steered both ways
             for angles in turned.values():
-                assert max(angles) > 0.2 and min(angles) < -0.2
+                assert max(angles) > 0.2
+                assert min(angles) < -0.2
 
 
 def test_the_car_never_turns_in_place_dynamically(make_env: Callable[..., gym.Env]) -> None:
@@ -133,7 +137,7 @@ def test_the_car_never_turns_in_place_dynamically(make_env: Callable[..., gym.En
     del controller._steps
     curvature = robot.drive.max_curvature
     assert len(poses) > 50
-    for (x0, y0, h0), (x1, y1, h1) in zip(poses, poses[1:], strict=False):
+    for (x0, y0, h0), (x1, y1, h1) in itertools.pairwise(poses):
         moved = math.hypot(x1 - x0, y1 - y0)
         assert abs(math.remainder(h1 - h0, 2 * math.pi)) <= 1.5 * curvature * moved + 1e-3
 

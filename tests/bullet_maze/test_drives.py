@@ -1,6 +1,7 @@
 """Each robot of the zoo drives as itself, in both modes: straight commands move it along its
-heading (its wheels turn), turns change its heading, a car cannot turn in place (its compass manoeuvre: test_car_compass.py), walls stop it
-with a collision, and the same seed gives the same rollout bit for bit."""
+heading (its wheels turn), turns change its heading, a car cannot turn in place (its compass
+manoeuvre: test_car_compass.py), walls stop it with a collision, and the same seed gives the
+same rollout bit for bit."""
 
 from __future__ import annotations
 

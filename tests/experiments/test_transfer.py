@@ -141,9 +141,7 @@ def test_a_condition_the_agent_cannot_act_in_is_listed_with_its_reason(
     job = Transfer(parse_spec(data, "tiny_transfer.toml"), tmp_path / "transfer")
     # per agent: its training condition + the static robot in kinematic mode
     assert len(job.cells) == 2 * 2
-    assert {(s.condition.robot, s.condition.mode) for s in job.skipped} == {
-        (str(urdf), "dynamic")
-    }
+    assert {(s.condition.robot, s.condition.mode) for s in job.skipped} == {(str(urdf), "dynamic")}
     assert "mass 0" in job.skipped[0].reason
 
 
