@@ -87,14 +87,19 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
     build = time.perf_counter() - start
     unwrapped = env.unwrapped
     layout, world = unwrapped.layout, unwrapped.world
-    queries, query_time = [0], [0.0]
+    # Per query: its CPU time t and the pieces it reported p; sums for the fit t = a + b p.
+    sums = {"n": 0.0, "t": 0.0, "p": 0.0, "pp": 0.0, "pt": 0.0}
     closest = world._closest
 
     def counted(x: float, y: float, reach: float) -> list[tuple]:
-        queries[0] += 1
         begin = time.process_time()
         points = closest(x, y, reach)
-        query_time[0] += time.process_time() - begin
+        spent, found = time.process_time() - begin, len(points)
+        sums["n"] += 1
+        sums["t"] += spent
+        sums["p"] += found
+        sums["pp"] += found * found
+        sums["pt"] += found * spent
         return points
 
     world._closest = counted
@@ -123,13 +128,19 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
             dynamic_env.reset()
     dynamic = dynamic_steps / (time.process_time() - begin)
     dynamic_env.close()
+    n = max(sums["n"], 1.0)
+    mean_p, mean_t = sums["p"] / n, sums["t"] / n
+    spread = sums["pp"] / n - mean_p * mean_p
+    per_piece = (sums["pt"] / n - mean_p * mean_t) / spread if spread > 1e-12 else 0.0
     return {
         "solids": layout.solid_count,
         "arena": layout.arena[0],
         "build_ms": build * 1e3,
         "kinematic": kinematic,
-        "queries": queries[0] / steps,
-        "query_us": query_time[0] / max(queries[0], 1) * 1e6,
+        "queries": sums["n"] / steps,
+        "query_us": mean_t * 1e6,
+        "pieces": mean_p,
+        "piece_us": per_piece * 1e6,
         "dynamic": dynamic,
         "render_ms": render * 1e3,
     }
@@ -173,27 +184,53 @@ def bench_solids(
         print(f"round {r + 1}/{rounds} done", file=sys.stderr)
     print(
         "| series | code | solids | arena | build (ms) | kinematic steps/s | vs N=10 | "
-        "queries/step | us/query | dynamic steps/s | vs N=10 | render (ms) |"
+        "certificates' bound: queries | and pieces | queries/step | pieces/query | us/query | "
+        "dynamic steps/s | vs N=10 | render (ms) |"
     )
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| --- " * 15 + "|")
+    verdicts = []
     for case in found:
         for name, _ in packages:
             rows = results[case, name]
             first = next(c for c in found if c.series == case.series)
             reference = results[first, name]
             med = {key: statistics.median(row[key] for row in rows) for key in rows[0]}
-            kin = statistics.median(
-                a["kinematic"] / b["kinematic"] for a, b in zip(rows, reference, strict=True)
-            )
-            dyn = statistics.median(
-                a["dynamic"] / b["dynamic"] for a, b in zip(rows, reference, strict=True)
-            )
+            pairs = list(zip(rows, reference, strict=True))
+            kin = statistics.median(a["kinematic"] / b["kinematic"] for a, b in pairs)
+            dyn = statistics.median(a["dynamic"] / b["dynamic"] for a, b in pairs)
+            by_count = statistics.median(certificate_bound(a, b, pieces=False) for a, b in pairs)
+            by_pieces = statistics.median(certificate_bound(a, b, pieces=True) for a, b in pairs)
             print(
                 f"| {case.series} | {name} | {med['solids']:.0f} | {med['arena']:.0f} | "
                 f"{med['build_ms']:.0f} | {med['kinematic']:,.0f} | {kin:.2f} | "
-                f"{med['queries']:.3f} | {med['query_us']:.1f} | {med['dynamic']:,.0f} | "
+                f"{by_count:.2f} | {by_pieces:.2f} | {med['queries']:.3f} | "
+                f"{med['pieces']:.2f} | {med['query_us']:.1f} | {med['dynamic']:,.0f} | "
                 f"{dyn:.2f} | {med['render_ms']:.0f} |"
             )
+            if case.count == max(counts) and name == "this tree":
+                verdicts.append(
+                    f"{case.series}, N = {case.count}: kinematic {kin:.2f} of the N = 10 speed; "
+                    f"the certificates' query count allows {by_count:.2f}, their query count and "
+                    f"the pieces each query reports {by_pieces:.2f}: "
+                    + ("met" if kin >= by_pieces else f"short by {by_pieces - kin:.2f}")
+                )
+    print()
+    for line in verdicts:
+        print(f"- {line}")
+
+
+def certificate_bound(row: dict[str, float], reference: dict[str, float], pieces: bool) -> float:
+    """The share of the N = 10 case's speed (``reference``, same series, code and round) that a
+    case keeps if only the certificates' pybullet work grows: its step time is the reference's,
+    with the reference's queries per step replaced by the case's at the reference's cost per
+    query; with ``pieces``, a query costs the reference's fit ``a + b p`` of its time against the
+    pieces p it reports (a query that must report more pieces costs more: each is a closest-point
+    computation and a result), evaluated at the case's mean p."""
+    step = 1e6 / reference["kinematic"]  # microseconds
+    cost = reference["query_us"]
+    if pieces:
+        cost += reference["piece_us"] * (row["pieces"] - reference["pieces"])
+    return step / (step + row["queries"] * cost - reference["queries"] * reference["query_us"])
 
 
 LIMIT_CODE = """
