@@ -249,6 +249,7 @@ class World:
         shape = pb.createCollisionShape(
             pb.GEOM_CYLINDER, radius=radius * s, height=WALL_HEIGHT / 2 * s, physicsClientId=c
         )
+        self._probe_shape = shape  # queried where the probe would be, without moving it
         probe = pb.createMultiBody(0.0, shape, -1, [0.0, 0.0, -WALL_HEIGHT * s], physicsClientId=c)
         # The probe only answers distance queries; it never touches anything in the simulation.
         pb.setCollisionFilterGroupMask(probe, -1, 0, 0, physicsClientId=c)
@@ -407,8 +408,16 @@ class World:
         s, c = METRES_PER_UNIT, self.client
         far = (reach + CONTACT_TOLERANCE) * s
         if self._single is not None:
-            self.place_probe(x, y)
-            return pb.getClosestPoints(self.probe_id, self._single, far, physicsClientId=c)
+            # The probe's shape at the probe's pose (``place_probe``), placed by the query itself:
+            # the same answers as the probe body's, bit for bit, without a move of its own.
+            return pb.getClosestPoints(
+                -1,
+                self._single,
+                far,
+                collisionShapeA=self._probe_shape,
+                collisionShapePositionA=(x * s, y * s, WALL_HEIGHT / 4 * s),
+                physicsClientId=c,
+            )
         if reach <= SAFE_REACH and self._index is not None:
             return self._index.closest(x, y, far)
         self.place_probe(x, y)
@@ -479,8 +488,9 @@ class _CellBounds:
 
 class _RegionIndex:
     """The query index of a layout of several solid bodies: a pybullet client of its own with the
-    footprint's collision shape and one static body per ``REGION`` square of the arena (those outside it, which a move
-    through the arena's wall may visit, when first asked; see the module docstring)."""
+    footprint's collision shape and one static body per ``REGION`` square of the arena (those
+    outside it, which a move through the arena's wall may visit, when first asked; see the module
+    docstring)."""
 
     def __init__(
         self, pieces: list[_Piece], robot_radius: float, arena: tuple[float, float]
