@@ -13,13 +13,17 @@ y map to world x and y, z is up. The world holds
   costs about the same per static body whatever its size: 1,000 walls in 8 bodies step 2.5 times
   faster than in 132 compounds of 16);
 * visual-only markers: the green start square and the red goal circle (section V.A);
-* a collision probe: a cylinder of the robot's footprint radius with no visual shape, moved
-  along a step to test it (``sweep_collides``). It is filtered out of the physics simulation;
-  cameras would draw its collision shape, so it is parked under the floor before rendering.
+* a collision probe: a cylinder of the robot's footprint radius with no visual shape. A query
+  (``sweep_collides``) passes its collision shape and the footprint's pose to
+  ``getClosestPoints``, which places it there itself: the probe body's own answers at that pose,
+  bit for bit, without the cost of moving a body (a broadphase update); the body is moved only
+  for the long queries of a layout of several solid bodies. It is filtered out of the physics
+  simulation; cameras would draw its collision shape, so it is parked under the floor before
+  rendering.
 
 Queries in a layout of several solid bodies go to a query index instead (``_RegionIndex``): a
-second pybullet client that only answers distance queries, holding its own probe and, for each
-``REGION``-unit square of the arena that a query has visited, one body whose compound shape holds
+second pybullet client that only answers distance queries, holding the footprint's shape and, for
+each ``REGION``-unit square of the arena that a query has visited, one body whose compound shape holds
 every piece that can lie within ``SAFE_REACH`` of a footprint centred in the square (pieces are
 copied into every square they are near). A query of that reach is then one ``getClosestPoints``
 call against one body whatever the number of solids; its answers are the same pieces' answers,
