@@ -23,9 +23,9 @@ y map to world x and y, z is up. The world holds
 
 Queries in a layout of several solid bodies go to a query index instead (``_RegionIndex``): a
 second pybullet client that only answers distance queries, holding the footprint's shape and, for
-each ``REGION``-unit square of the arena that a query has visited, one body whose compound shape holds
-every piece that can lie within ``SAFE_REACH`` of a footprint centred in the square (pieces are
-copied into every square they are near). A query of that reach is then one ``getClosestPoints``
+each ``REGION``-unit square of the arena that a query has visited, one body whose compound shape
+holds every piece that can lie within ``SAFE_REACH`` of a footprint centred in the square (pieces
+are copied into every square they are near). A query of that reach is then one ``getClosestPoints``
 call against one body whatever the number of solids; its answers are the same pieces' answers,
 bit for bit, as those of the bodies above (the same shapes at the same places). Longer reaches ask
 the bodies above. The index never takes part in the simulation or in pictures.
