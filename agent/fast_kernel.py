@@ -37,11 +37,17 @@ EV_SUMS = 7
 EV_PY_TAIL = 8
 EV_CALLBACK_ERROR = 9
 
-SWEEP_CALLBACK = ctypes.CFUNCTYPE(ctypes.c_int64)
+SWEEP_CALLBACK = ctypes.CFUNCTYPE(
+    ctypes.c_int64, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_int64
+)
 """The driver's sweep, called from the kernel without returning (about 0.3 us a call against
-several for a return): it takes the move in ``fs[F_SW_X0:F_SW_Y1 + 1]``, calls
-``World.sweep_collides`` and writes the collision, the goal test and the safe ball; -1 when it
-raised (the driver re-raises the exception after the kernel returns EV_CALLBACK_ERROR)."""
+several for a return): ``sweep(x0, y0, x1, y1, known)`` answers ``World.sweep_collides(x0, y0,
+x1, y1)`` and writes the safe ball; returns collided + 2 * success (the goal test), -1 when it
+raised (the driver re-raises the exception after the kernel returns EV_CALLBACK_ERROR).
+``known`` = 1: the kernel's :func:`certified_free` found the move not proved free on a cell it
+knows (the world's own ``certified_free`` answers False too, with no side effect), so the
+driver may go straight to the queries; 0: undecided here (an unseen cell, a margin, or a free
+move whose goal test was uncertain)."""
 
 # Phases (st[I_PHASE]).
 PH_START = 0
@@ -1213,10 +1219,12 @@ def certified_free(x0, y0, x1, y1, fs, cells, bounds_c, bounds_r, pieces):
 @njit(cache=True, inline="always")
 def env_step(action, st, fs, moves, noise, cells, bounds_c, bounds_r, pieces):
     """``env.step(action)`` (kinematic, through TimeLimit): 1 when taken here (the move proved
-    free and the goal test certain), 2 when only Python can decide the collision or the goal
-    (the move is in ``fs[F_SW_X0:F_SW_Y1 + 1]``: the driver calls ``World.sweep_collides`` on
-    it, as ``step`` does, and :func:`finish_step` completes the step), 0 when ``env.step``
-    itself must take it (a new noise block, the checker's first steps). Only 1 changes state.
+    free and the goal test certain), 2 or 3 when only Python can decide the collision or the
+    goal (the move is in ``fs[F_SW_X0:F_SW_Y1 + 1]``: the driver's sweep answers
+    ``World.sweep_collides`` on it, as ``step`` does, and :func:`finish_step` completes the
+    step; 3: :func:`certified_free` found it not proved free on a known cell), 0 when
+    ``env.step`` itself must take it (a new noise block, the checker's first steps). Only 1
+    changes state.
     """
     if not st[I_CHECKER_OK]:
         return 0
@@ -1230,14 +1238,15 @@ def env_step(action, st, fs, moves, noise, cells, bounds_c, bounds_r, pieces):
     x1 = x0 + dx
     y1 = y0 + dy
     success = -1
-    if certified_free(x0, y0, x1, y1, fs, cells, bounds_c, bounds_r, pieces) == 1:
+    free = certified_free(x0, y0, x1, y1, fs, cells, bounds_c, bounds_r, pieces)
+    if free == 1:
         success = hypot_le(x1 - fs[F_GX], y1 - fs[F_GY], fs[F_GR])
     if success < 0:
         fs[F_SW_X0] = x0
         fs[F_SW_Y0] = y0
         fs[F_SW_X1] = x1
         fs[F_SW_Y1] = y1
-        return 2
+        return 3 if free == 0 else 2
     st[I_COLLIDED] = 0
     st[I_SUCCESS] = success
     fs[F_OX] = x1
@@ -1337,8 +1346,8 @@ def run_episode(
                 )
                 if code == 1:
                     st[I_KERNEL_STEPS] += 1
-                elif code == 2:
-                    result = sweep()
+                elif code >= 2:
+                    result = sweep(fs[F_SW_X0], fs[F_SW_Y0], fs[F_SW_X1], fs[F_SW_Y1], code - 2)
                     if result < 0:
                         st[I_PHASE] = PH_STEP
                         return EV_CALLBACK_ERROR
