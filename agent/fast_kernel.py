@@ -23,6 +23,7 @@ import ctypes
 import math
 
 import numpy as np
+from llvmlite import ir
 from numba import carray, njit, types
 from numba.extending import intrinsic
 
@@ -141,6 +142,7 @@ I_REC_STAGE = 76
 I_ADD_K = 77
 I_SUM_SLOT = 78
 I_SPLIT_DIM = 79
+I_SWEEP = 80  # the address of the driver's SWEEP_CALLBACK (see call_sweep)
 N_INT = 96
 
 # Float state fs[...].
@@ -1256,6 +1258,23 @@ def env_step(action, st, fs, moves, noise, cells, bounds_c, bounds_r, pieces):
     return 1
 
 
+@intrinsic
+def call_sweep(typingctx, address, x0, y0, x1, y1, known):
+    """Call the SWEEP_CALLBACK at ``address`` (an int64) with the move and ``known``: the
+    driver stores its callback's address in ``st[I_SWEEP]`` instead of passing the ctypes
+    object, whose unboxing cost several us at every call of :func:`run_pooled`."""
+    signature = types.int64(types.int64, types.float64, types.float64, types.float64,
+                            types.float64, types.int64)
+
+    def codegen(context, builder, sig, args):
+        double, int64 = ir.DoubleType(), ir.IntType(64)
+        function = ir.FunctionType(int64, [double, double, double, double, int64])
+        pointer = builder.inttoptr(args[0], function.as_pointer())
+        return builder.call(pointer, args[1:])
+
+    return signature, codegen
+
+
 @njit(cache=True, inline="always")
 def finish_step(st, fs):
     """The rest of ``step`` once the collision (``st[I_COLLIDED]``), the goal test
@@ -1307,7 +1326,6 @@ def run_episode(
     bounds_c,
     bounds_r,
     pieces,
-    sweep,
 ):
     """Run (or resume) the episode until it ends or needs Python; returns the event."""
     while True:
@@ -1348,7 +1366,9 @@ def run_episode(
                 if code == 1:
                     st[I_KERNEL_STEPS] += 1
                 elif code >= 2:
-                    result = sweep(fs[F_SW_X0], fs[F_SW_Y0], fs[F_SW_X1], fs[F_SW_Y1], code - 2)
+                    result = call_sweep(
+                        st[I_SWEEP], fs[F_SW_X0], fs[F_SW_Y0], fs[F_SW_X1], fs[F_SW_Y1], code - 2
+                    )
                     if result < 0:
                         st[I_PHASE] = PH_STEP
                         return EV_CALLBACK_ERROR
@@ -1622,7 +1642,7 @@ def view2(pool, lay, i):
 
 
 @njit(cache=True)
-def run_pooled(ipool, fpool, lay, sweep):
+def run_pooled(ipool, fpool, lay):
     """:func:`run_episode` on the pools' views."""
     f = len(POOLED_INT)
     return run_episode(
@@ -1654,5 +1674,4 @@ def run_pooled(ipool, fpool, lay, sweep):
         view2(fpool, lay, f + 13),  # bounds_c
         view2(ipool, lay, 12),  # bounds_r
         view2(fpool, lay, f + 14),  # pieces
-        sweep,
     )

@@ -38,6 +38,7 @@ A callback that changes the agent's tables in place is not seen by the kernel: u
 from __future__ import annotations
 
 import ast
+import ctypes
 import dataclasses
 import hashlib
 import inspect
@@ -527,6 +528,7 @@ def load_kernel() -> Any:
             runner.k = fast_kernel
             runner._dummy_arrays(fast_kernel)
             runner._sweep_callback = fast_kernel.SWEEP_CALLBACK(lambda *move: 0)
+            runner.st[fast_kernel.I_SWEEP] = _address(runner._sweep_callback)
             event = fast_kernel.run_pooled(*runner._args())
             if event != fast_kernel.EV_DONE:
                 raise RuntimeError(f"the kernel's warm-up returned event {event}")
@@ -580,6 +582,7 @@ class FastRunner:
     ubase: int
     new_block: bool
     _argtuple: tuple[Any, ...] | None
+    _cell_views: tuple[Any, ...] | None = None
     _noise_list: list[float] | None
     _q_list: Any
     _visits_list: Any
@@ -841,13 +844,12 @@ class FastRunner:
                     fs[sx], fs[sy], fs[sr] = safe
                     written[0] = safe
                 if len(runner.cell_table) != runner.ncells:
-                    runner._import_cells(runner.cell_table, grow=False)
+                    runner._import_cells_in_call(runner.cell_table)
                 return (2 if success else 0) + (1 if collided else 0)
             except BaseException as error:
                 runner._error = error
                 return -1
 
-        self._written_safe = written
         return sweep
 
     def _queries_for(self, world: Any) -> Callable[[float, float, float, float], bool] | None:
@@ -1013,6 +1015,56 @@ class FastRunner:
         self.nbounds, self.npieces = index, first
         self.ncells = len(cells)
 
+    def _import_cells_in_call(self, cells: dict[tuple[int, int], Any]) -> None:
+        """:meth:`_import_cells` with ``grow=False`` (inside the kernel's call, where no array
+        may be replaced), writing through flat memoryviews of the tables (about half the cost
+        of NumPy's item assignment; the sweep of a cell's first visit pays it). Nothing when
+        they do not fit: the next return to Python imports the cells."""
+        views = self._cell_views
+        if views is None:
+            views = self._cell_views = (
+                _flat(self.cells, "q"),
+                _flat(self.bounds_c, "d"),
+                _flat(self.bounds_r, "q"),
+                _flat(self.pieces, "d"),
+                self.cells.shape[0],
+                self.cells.shape[1],
+                self.bounds_c.shape[0],
+                self.pieces.shape[0],
+            )
+        table, centres, ranges, rows, width, height, max_bounds, max_pieces = views
+        total = len(cells)
+        new = total - self.ncells
+        index, first = self.nbounds, self.npieces
+        if index + new > max_bounds:
+            return
+        useless = self.k.CELL_USELESS
+        for (cx, cy), bounds in itertools.islice(reversed(cells.items()), new):
+            if not (0 <= cx < width and 0 <= cy < height):
+                continue  # left unseen: the kernel lets env.step take such moves
+            if bounds is None:
+                table[cx * height + cy] = useless
+                continue
+            pieces = bounds.pieces
+            count = len(pieces)
+            if first + count > max_pieces:  # ncells stays: the next return imports them all
+                self.__dict__.update(nbounds=index, npieces=first)
+                return
+            j = 3 * first
+            for distance, nx, ny in pieces:
+                rows[j] = distance
+                rows[j + 1] = nx
+                rows[j + 2] = ny
+                j += 3
+            centres[2 * index] = bounds.cx
+            centres[2 * index + 1] = bounds.cy
+            ranges[2 * index] = first
+            ranges[2 * index + 1] = count
+            table[cx * height + cy] = index
+            index += 1
+            first += count
+        self.__dict__.update(nbounds=index, npieces=first, ncells=total)
+
     # -- agent state ---------------------------------------------------------------------
 
     def _export(self) -> None:
@@ -1033,6 +1085,7 @@ class FastRunner:
 
         st = self.st = np.zeros(k.N_INT, dtype=np.int64)
         fs = self.fs = np.zeros(k.N_FLOAT, dtype=np.float64)
+        st[k.I_SWEEP] = _address(self._sweep_callback)
         is_tree = type(partition) is PartitionTree
         st[k.C_KIND] = 0 if is_tree else 1
         st[k.C_ACTIONS] = actions
@@ -1504,7 +1557,8 @@ class FastRunner:
             view = pools[array.dtype][start : start + size].reshape(array.shape)
             view[...] = array
             object.__setattr__(self, name, view)
-        return (pools[np.dtype(np.int64)], pools[np.dtype(np.float64)], lay, self._sweep_callback)
+        self._cell_views = None
+        return (pools[np.dtype(np.int64)], pools[np.dtype(np.float64)], lay)
 
     def _dummy_arrays(self, k: Any) -> None:
         """Arrays of the kernel's types for a call that returns at once (the warm-up)."""
@@ -1606,6 +1660,19 @@ def _sweep_queries(world: Any) -> Callable[[float, float, float, float], bool]:
         return True
 
     return queries
+
+
+def _flat(array: np.ndarray, code: str) -> memoryview:
+    """A flat memoryview of a C-contiguous array's own memory (``cast`` raises otherwise)."""
+    return memoryview(array).cast("B").cast(code)
+
+
+def _address(callback: Any) -> int:
+    """The C address of a ctypes callback (the kernel calls it there; the caller keeps the
+    callback alive)."""
+    address = ctypes.cast(callback, ctypes.c_void_p).value
+    assert address is not None
+    return address
 
 
 def _resized(array: np.ndarray, rows: int) -> np.ndarray:
