@@ -113,6 +113,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_bonus": (float, int),
     "initial_depth": int,
     "presplit_each_dimension": bool,
+    # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off
+    "leaves_per_terminal": int,
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""
