@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, replace
+from typing import Protocol
 
 import pybullet as pb
 
@@ -554,9 +555,23 @@ class Hinge:
     """Metres to the left of the centre line (at the robot's scale)."""
 
 
+class Manoeuvre(Protocol):
+    """How a car realises a displacement (``Move``): ``bullet_maze.robots.car_compass``."""
+
+    def path(self, pose: Pose, move: Move) -> tuple[list[Point], Pose]: ...
+
+    def run(self, move: Move, watch: World | None, stop_on_touch: bool) -> bool: ...
+
+    def reach(self, move: Move) -> float: ...
+
+
 class AckermannDrive(Drive):
     """A car: driven (rear) wheels, steering hinges in position control, free wheels at motor
     force 0, as in pybullet's ``examples/racecar.py``. It cannot turn in place.
+
+    A ``Move`` (a compass action) is realised by ``manoeuvre`` (a short manoeuvre of arcs that
+    keeps the heading, ``bullet_maze.robots.car_compass``), in both modes; without one it is
+    an error.
 
     Kinematic mode: the bicycle model about the middle of the driven axle: a ``Twist`` of
     distance d turns by at most d times the largest curvature ``max_curvature``. Dynamic mode:
@@ -594,6 +609,8 @@ class AckermannDrive(Drive):
         self._sent: tuple[float, float] | None = None
         inner = max((abs(h.lateral) for h in hinges), default=0.0)
         self._inner = inner
+        self.manoeuvre: Manoeuvre | None = None
+        """Realises ``Move`` commands (set by ``make_robot``)."""
 
     @property
     def max_speed(self) -> float:
@@ -632,14 +649,7 @@ class AckermannDrive(Drive):
             return
         self._sent = (speed, curvature)
         client, body, limits = self.client, self.body.id, self.limits
-        top = limits.steering
-        angles = [
-            h.sign
-            * min(
-                top, max(-top, math.atan2(self.wheelbase * curvature, 1.0 - curvature * h.lateral))
-            )
-            for h in self.hinges
-        ]
+        angles = self.steering_angles(curvature)
         pb.setJointMotorControlArray(
             body,
             [h.index for h in self.hinges],
@@ -660,15 +670,39 @@ class AckermannDrive(Drive):
             physicsClientId=client,
         )
 
+    def steering_angles(self, curvature: float) -> list[float]:
+        """Each hinge's joint angle for an arc of ``curvature`` (1/m), within the limit."""
+        top = self.limits.steering
+        return [
+            h.sign
+            * min(
+                top, max(-top, math.atan2(self.wheelbase * curvature, 1.0 - curvature * h.lateral))
+            )
+            for h in self.hinges
+        ]
+
+    def _manoeuvre(self) -> Manoeuvre:
+        if self.manoeuvre is None:
+            raise ValueError(
+                "a car without a manoeuvre (AckermannDrive.manoeuvre) cannot realise a "
+                "displacement (Move) command"
+            )
+        return self.manoeuvre
+
+    def reach(self, command: Command) -> float:
+        if isinstance(command, Move):
+            return self._manoeuvre().reach(command)
+        return super().reach(command)
+
     def path(self, pose: Pose, command: Command) -> tuple[list[Point], Pose]:
-        if not isinstance(command, Twist):
-            raise ValueError("a car cannot realise a displacement (Move) command")
+        if isinstance(command, Move):
+            return self._manoeuvre().path(pose, command)
         twist = self.realisable(command)
         return arc_points(pose, self.axle, twist.distance, twist.turn)
 
     def run(self, command: Command, watch: World | None, stop_on_touch: bool) -> bool:
-        if not isinstance(command, Twist):
-            raise ValueError("a car cannot realise a displacement (Move) command")
+        if isinstance(command, Move):
+            return self._manoeuvre().run(command, watch, stop_on_touch)
         twist = self.realisable(command)
         curvature = 0.0
         if twist.distance != 0.0:

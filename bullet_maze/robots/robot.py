@@ -22,6 +22,7 @@ import pybullet as pb
 
 from bullet_maze.params import METRES_PER_UNIT, PhysicsParams
 from bullet_maze.robots.body import Body, JointInfo
+from bullet_maze.robots.car_compass import CarCompass
 from bullet_maze.robots.commands import Command
 from bullet_maze.robots.drives import (
     DEFAULT_BRAKING,
@@ -415,7 +416,7 @@ def _ackermann(spec: RobotSpec, body: Body) -> AckermannDrive:
         steering=steering,
         steering_torque=spec.steering_torque,
     )
-    return AckermannDrive(
+    drive = AckermannDrive(
         body,
         math.atan2(forward[1], forward[0]),
         wheels,
@@ -426,6 +427,8 @@ def _ackermann(spec: RobotSpec, body: Body) -> AckermannDrive:
         wheelbase,
         limits,
     )
+    drive.manoeuvre = CarCompass(drive)
+    return drive
 
 
 def _detected(spec: RobotSpec, body: Body) -> RobotSpec:

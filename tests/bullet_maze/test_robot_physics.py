@@ -70,9 +70,13 @@ def test_robot_files_set_their_physics_per_action_set(make_env: Callable[..., gy
     assert resolve_robot("rover").physics_defaults("compass") == {
         "time_step": pytest.approx(1 / 120)
     }
-    # The disc (the paper's robot) and the racecar keep the env's physics.
-    for name in ("disc", "racecar"):
-        assert resolve_robot(name).physics == ()
+    # The disc (the paper's robot) keeps the env's physics; the racecar's compass manoeuvres
+    # run at 120 Hz, its native and continuous commands at the env's.
+    assert resolve_robot("disc").physics == ()
+    racecar = resolve_robot("racecar")
+    assert racecar.physics_defaults("compass") == {"time_step": pytest.approx(1 / 120)}
+    assert racecar.physics_defaults("native") == {}
+    assert racecar.physics_defaults("continuous") == {}
     env = make_env(robot="husky", mode="dynamic")
     assert env.unwrapped.physics.time_step == pytest.approx(1 / 60)
     assert env.unwrapped.physics.solver_iterations == 5
