@@ -23,7 +23,9 @@ import ctypes
 import math
 
 import numpy as np
-from numba import njit
+from llvmlite import ir
+from numba import carray, njit, types
+from numba.extending import intrinsic
 
 # Events (return values of run_episode).
 EV_DONE = 0
@@ -37,11 +39,17 @@ EV_SUMS = 7
 EV_PY_TAIL = 8
 EV_CALLBACK_ERROR = 9
 
-SWEEP_CALLBACK = ctypes.CFUNCTYPE(ctypes.c_int64)
+SWEEP_CALLBACK = ctypes.CFUNCTYPE(
+    ctypes.c_int64, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_int64
+)
 """The driver's sweep, called from the kernel without returning (about 0.3 us a call against
-several for a return): it takes the move in ``fs[F_SW_X0:F_SW_Y1 + 1]``, calls
-``World.sweep_collides`` and writes the collision, the goal test and the safe ball; -1 when it
-raised (the driver re-raises the exception after the kernel returns EV_CALLBACK_ERROR)."""
+several for a return): ``sweep(x0, y0, x1, y1, known)`` answers ``World.sweep_collides(x0, y0,
+x1, y1)`` and writes the safe ball; returns collided + 2 * success (the goal test), -1 when it
+raised (the driver re-raises the exception after the kernel returns EV_CALLBACK_ERROR).
+``known`` = 1: the kernel's :func:`certified_free` found the move not proved free on a cell it
+knows (the world's own ``certified_free`` answers False too, with no side effect), so the
+driver may go straight to the queries; 0: undecided here (an unseen cell, a margin, or a free
+move whose goal test was uncertain)."""
 
 # Phases (st[I_PHASE]).
 PH_START = 0
@@ -134,6 +142,7 @@ I_REC_STAGE = 76
 I_ADD_K = 77
 I_SUM_SLOT = 78
 I_SPLIT_DIM = 79
+I_SWEEP = 80  # the address of the driver's SWEEP_CALLBACK (see call_sweep)
 N_INT = 96
 
 # Float state fs[...].
@@ -1213,10 +1222,12 @@ def certified_free(x0, y0, x1, y1, fs, cells, bounds_c, bounds_r, pieces):
 @njit(cache=True, inline="always")
 def env_step(action, st, fs, moves, noise, cells, bounds_c, bounds_r, pieces):
     """``env.step(action)`` (kinematic, through TimeLimit): 1 when taken here (the move proved
-    free and the goal test certain), 2 when only Python can decide the collision or the goal
-    (the move is in ``fs[F_SW_X0:F_SW_Y1 + 1]``: the driver calls ``World.sweep_collides`` on
-    it, as ``step`` does, and :func:`finish_step` completes the step), 0 when ``env.step``
-    itself must take it (a new noise block, the checker's first steps). Only 1 changes state.
+    free and the goal test certain), 2 or 3 when only Python can decide the collision or the
+    goal (the move is in ``fs[F_SW_X0:F_SW_Y1 + 1]``: the driver's sweep answers
+    ``World.sweep_collides`` on it, as ``step`` does, and :func:`finish_step` completes the
+    step; 3: :func:`certified_free` found it not proved free on a known cell), 0 when
+    ``env.step`` itself must take it (a new noise block, the checker's first steps). Only 1
+    changes state.
     """
     if not st[I_CHECKER_OK]:
         return 0
@@ -1230,20 +1241,38 @@ def env_step(action, st, fs, moves, noise, cells, bounds_c, bounds_r, pieces):
     x1 = x0 + dx
     y1 = y0 + dy
     success = -1
-    if certified_free(x0, y0, x1, y1, fs, cells, bounds_c, bounds_r, pieces) == 1:
+    free = certified_free(x0, y0, x1, y1, fs, cells, bounds_c, bounds_r, pieces)
+    if free == 1:
         success = hypot_le(x1 - fs[F_GX], y1 - fs[F_GY], fs[F_GR])
     if success < 0:
         fs[F_SW_X0] = x0
         fs[F_SW_Y0] = y0
         fs[F_SW_X1] = x1
         fs[F_SW_Y1] = y1
-        return 2
+        return 3 if free == 0 else 2
     st[I_COLLIDED] = 0
     st[I_SUCCESS] = success
     fs[F_OX] = x1
     fs[F_OY] = y1
     finish_step(st, fs)
     return 1
+
+
+@intrinsic
+def call_sweep(typingctx, address, x0, y0, x1, y1, known):
+    """Call the SWEEP_CALLBACK at ``address`` (an int64) with the move and ``known``: the
+    driver stores its callback's address in ``st[I_SWEEP]`` instead of passing the ctypes
+    object, whose unboxing cost several us at every call of :func:`run_pooled`."""
+    signature = types.int64(types.int64, types.float64, types.float64, types.float64,
+                            types.float64, types.int64)
+
+    def codegen(context, builder, sig, args):
+        double, int64 = ir.DoubleType(), ir.IntType(64)
+        function = ir.FunctionType(int64, [double, double, double, double, int64])
+        pointer = builder.inttoptr(args[0], function.as_pointer())
+        return builder.call(pointer, args[1:])
+
+    return signature, codegen
 
 
 @njit(cache=True, inline="always")
@@ -1297,7 +1326,6 @@ def run_episode(
     bounds_c,
     bounds_r,
     pieces,
-    sweep,
 ):
     """Run (or resume) the episode until it ends or needs Python; returns the event."""
     while True:
@@ -1337,8 +1365,10 @@ def run_episode(
                 )
                 if code == 1:
                     st[I_KERNEL_STEPS] += 1
-                elif code == 2:
-                    result = sweep()
+                elif code >= 2:
+                    result = call_sweep(
+                        st[I_SWEEP], fs[F_SW_X0], fs[F_SW_Y0], fs[F_SW_X1], fs[F_SW_Y1], code - 2
+                    )
                     if result < 0:
                         st[I_PHASE] = PH_STEP
                         return EV_CALLBACK_ERROR
@@ -1584,22 +1614,35 @@ POOLED_INT + POOLED_FLOAT: offset, rows, columns), in this order: numba's dispat
 array argument, and the kernel returns to Python for every pybullet sweep."""
 
 
+@intrinsic
+def address(typingctx, pool, offset):
+    """A pointer to ``pool[offset]`` (a C-contiguous 1-d array, ``0 <= offset <= pool.size``)."""
+    signature = types.CPointer(pool.dtype)(pool, offset)
+
+    def codegen(context, builder, sig, args):
+        array = context.make_array(sig.args[0])(context, builder, value=args[0])
+        return builder.gep(array.data, [args[1]])
+
+    return signature, codegen
+
+
 @njit(cache=True, inline="always")
 def view1(pool, lay, i):
-    o = lay[i, 0]
-    return pool[o : o + lay[i, 1]]
+    """Row i of ``lay`` as a 1-d view of ``pool`` that numba does not reference-count: an
+    array made by ``carray`` has no meminfo, so every incref and decref the kernel's inlined
+    helpers make of it is a null test instead of an atomic add (they were about a tenth of
+    the fast loop's time). ``pool`` outlives the call (the driver holds it)."""
+    return carray(address(pool, lay[i, 0]), lay[i, 1])
 
 
 @njit(cache=True, inline="always")
 def view2(pool, lay, i):
-    o = lay[i, 0]
-    rows = lay[i, 1]
-    columns = lay[i, 2]
-    return pool[o : o + rows * columns].reshape((rows, columns))
+    """Row i of ``lay`` as a 2-d C-contiguous view of ``pool`` (see :func:`view1`)."""
+    return carray(address(pool, lay[i, 0]), (lay[i, 1], lay[i, 2]))
 
 
 @njit(cache=True)
-def run_pooled(ipool, fpool, lay, sweep):
+def run_pooled(ipool, fpool, lay):
     """:func:`run_episode` on the pools' views."""
     f = len(POOLED_INT)
     return run_episode(
@@ -1631,5 +1674,4 @@ def run_pooled(ipool, fpool, lay, sweep):
         view2(fpool, lay, f + 13),  # bounds_c
         view2(ipool, lay, 12),  # bounds_r
         view2(fpool, lay, f + 14),  # pieces
-        sweep,
     )

@@ -38,6 +38,7 @@ A callback that changes the agent's tables in place is not seen by the kernel: u
 from __future__ import annotations
 
 import ast
+import ctypes
 import dataclasses
 import hashlib
 import inspect
@@ -112,6 +113,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_bonus": (float, int),
     "initial_depth": int,
     "presplit_each_dimension": bool,
+    # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off
+    "leaves_per_terminal": int,
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""
@@ -261,6 +264,8 @@ def _env_functions(base: Any) -> dict[str, Any]:
         "BulletMazeEnv.fast_core": env_type.fast_core,
         "World.certified_free": world_type.certified_free,
         "World.sweep_collides": world_type.sweep_collides,
+        "World._closest": world_type._closest,
+        "World.place_probe": world_type.place_probe,
         "_CellBounds.clear": getattr(bounds_type, "clear", None),
     }
 
@@ -320,6 +325,8 @@ FINGERPRINTS = {
     "BulletMazeEnv.fast_core": "7936da0308bf1673",
     "World.certified_free": "4e09b0d9feccf14f",
     "World.sweep_collides": "a558adefa017c807",
+    "World._closest": "f159013e903d93e3",
+    "World.place_probe": "108f3db2a31e5627",
     "_CellBounds.clear": "70e9511f5b4adbf8",
 }
 """Hash of each mirrored function's source (docstrings and comments removed, :func:`fingerprint`)
@@ -522,7 +529,8 @@ def load_kernel() -> Any:
             runner = FastRunner.__new__(FastRunner)
             runner.k = fast_kernel
             runner._dummy_arrays(fast_kernel)
-            runner._sweep_callback = fast_kernel.SWEEP_CALLBACK(lambda: 0)
+            runner._sweep_callback = fast_kernel.SWEEP_CALLBACK(lambda *move: 0)
+            runner.st[fast_kernel.I_SWEEP] = _address(runner._sweep_callback)
             event = fast_kernel.run_pooled(*runner._args())
             if event != fast_kernel.EV_DONE:
                 raise RuntimeError(f"the kernel's warm-up returned event {event}")
@@ -576,6 +584,7 @@ class FastRunner:
     ubase: int
     new_block: bool
     _argtuple: tuple[Any, ...] | None
+    _cell_views: tuple[Any, ...] | None = None
     _noise_list: list[float] | None
     _q_list: Any
     _visits_list: Any
@@ -664,6 +673,7 @@ class FastRunner:
         sets this to 0.0 (``bench/bench_agent.py``); None: not measured."""
         self._pending = False
         self._error: BaseException | None = None
+        self._queries: Callable[[float, float, float, float], bool] | None = None
         self._sweep_callback = kernel.SWEEP_CALLBACK(self._sweep_function())
         self.sums_events = [0, 0, 0]
         """Rings the kernel filled (exact sums asked of NumPy), for the tests: a leaf's own
@@ -689,6 +699,7 @@ class FastRunner:
             return agent._run_episode(env, obs)
         fs[k.F_X], fs[k.F_Y] = x
         core = self._import_env()
+        self._queries = self._queries_for(self.world)
         self.goal, self.goal_radius = core.goal, core.goal_radius
         fs[k.F_GX], fs[k.F_GY] = core.goal
         fs[k.F_GR] = core.goal_radius
@@ -789,28 +800,38 @@ class FastRunner:
         st[k.I_PY_STEPS] += 1
         self._import_env()
 
-    def _sweep_function(self) -> Callable[[], int]:
+    def _sweep_function(self) -> Callable[[float, float, float, float, int], int]:
         """The sweep the kernel calls (through a ctypes callback) for a move it could not
         decide: ``env.step``'s call ``world.sweep_collides(x0, y0, x1, y1)`` and goal test, the
         safe ball and any new cell written into the kernel's arrays; returns collided + 2 *
         success (the kernel does the rest of the step), -1 when it raised (the exception cannot
-        cross the callback: it is kept and raised once the kernel has returned)."""
+        cross the callback: it is kept and raised once the kernel has returned).
+
+        ``known`` = 1 (the kernel's ``certified_free`` found the move not proved free on a cell
+        it holds, so the world's own ``certified_free`` returns False with no side effect):
+        :func:`_sweep_queries`, ``sweep_collides`` after that first line, when the world's
+        methods are its class's (see :meth:`_queries_for`)."""
         k = self.k
-        first, last = k.F_SW_X0, k.F_SW_Y1 + 1
         sx, sy, sr = k.F_SX, k.F_SY, k.F_SR
         hypot, clock = math.hypot, time.process_time
         runner = self
+        written: list[Any] = [None]  # the safe ball last written into fs
 
-        def sweep() -> int:
+        def sweep(x0: float, y0: float, x1: float, y1: float, known: int) -> int:
             try:
-                fs = runner.fs
-                x0, y0, x1, y1 = fs[first:last].tolist()
                 world = runner.world
+                queries = runner._queries if known else None
                 if runner.env_seconds is None:
-                    collided = world.sweep_collides(x0, y0, x1, y1)
+                    if queries is not None:
+                        collided = queries(x0, y0, x1, y1)
+                    else:
+                        collided = world.sweep_collides(x0, y0, x1, y1)
                 else:
                     start = clock()
-                    collided = world.sweep_collides(x0, y0, x1, y1)
+                    if queries is not None:
+                        collided = queries(x0, y0, x1, y1)
+                    else:
+                        collided = world.sweep_collides(x0, y0, x1, y1)
                     runner.env_seconds += clock() - start
                 gx, gy = runner.goal
                 if collided:
@@ -819,15 +840,26 @@ class FastRunner:
                     success = hypot(x1 - gx, y1 - gy) <= runner.goal_radius
                 # the sweep renews the safe ball and may have seen a new cell (FastCore's
                 # safe_ball is World._safe, its cells the live World._cells)
-                fs[sx], fs[sy], fs[sr] = world._safe
+                safe = world._safe
+                if safe is not written[0]:
+                    fs = runner.fs
+                    fs[sx], fs[sy], fs[sr] = safe
+                    written[0] = safe
                 if len(runner.cell_table) != runner.ncells:
-                    runner._import_cells(runner.cell_table, grow=False)
+                    runner._import_cells_in_call(runner.cell_table)
                 return (2 if success else 0) + (1 if collided else 0)
             except BaseException as error:
                 runner._error = error
                 return -1
 
         return sweep
+
+    def _queries_for(self, world: Any) -> Callable[[float, float, float, float], bool] | None:
+        """:func:`_sweep_queries` for ``world``, or None when one of the methods it mirrors or
+        calls is replaced on the instance (then ``world.sweep_collides`` itself is called)."""
+        if any(name in vars(world) for name in _MIRRORED_WORLD_METHODS):
+            return None
+        return _sweep_queries(world)
 
     def _record(self) -> None:
         """The tail of ``_end_epoch`` in Python (when the kernel does not run the split test):
@@ -985,6 +1017,56 @@ class FastRunner:
         self.nbounds, self.npieces = index, first
         self.ncells = len(cells)
 
+    def _import_cells_in_call(self, cells: dict[tuple[int, int], Any]) -> None:
+        """:meth:`_import_cells` with ``grow=False`` (inside the kernel's call, where no array
+        may be replaced), writing through flat memoryviews of the tables (about half the cost
+        of NumPy's item assignment; the sweep of a cell's first visit pays it). Nothing when
+        they do not fit: the next return to Python imports the cells."""
+        views = self._cell_views
+        if views is None:
+            views = self._cell_views = (
+                _flat(self.cells, "q"),
+                _flat(self.bounds_c, "d"),
+                _flat(self.bounds_r, "q"),
+                _flat(self.pieces, "d"),
+                self.cells.shape[0],
+                self.cells.shape[1],
+                self.bounds_c.shape[0],
+                self.pieces.shape[0],
+            )
+        table, centres, ranges, rows, width, height, max_bounds, max_pieces = views
+        total = len(cells)
+        new = total - self.ncells
+        index, first = self.nbounds, self.npieces
+        if index + new > max_bounds:
+            return
+        useless = self.k.CELL_USELESS
+        for (cx, cy), bounds in itertools.islice(reversed(cells.items()), new):
+            if not (0 <= cx < width and 0 <= cy < height):
+                continue  # left unseen: the kernel lets env.step take such moves
+            if bounds is None:
+                table[cx * height + cy] = useless
+                continue
+            pieces = bounds.pieces
+            count = len(pieces)
+            if first + count > max_pieces:  # ncells stays: the next return imports them all
+                self.__dict__.update(nbounds=index, npieces=first)
+                return
+            j = 3 * first
+            for distance, nx, ny in pieces:
+                rows[j] = distance
+                rows[j + 1] = nx
+                rows[j + 2] = ny
+                j += 3
+            centres[2 * index] = bounds.cx
+            centres[2 * index + 1] = bounds.cy
+            ranges[2 * index] = first
+            ranges[2 * index + 1] = count
+            table[cx * height + cy] = index
+            index += 1
+            first += count
+        self.__dict__.update(nbounds=index, npieces=first, ncells=total)
+
     # -- agent state ---------------------------------------------------------------------
 
     def _export(self) -> None:
@@ -1005,6 +1087,7 @@ class FastRunner:
 
         st = self.st = np.zeros(k.N_INT, dtype=np.int64)
         fs = self.fs = np.zeros(k.N_FLOAT, dtype=np.float64)
+        st[k.I_SWEEP] = _address(self._sweep_callback)
         is_tree = type(partition) is PartitionTree
         st[k.C_KIND] = 0 if is_tree else 1
         st[k.C_ACTIONS] = actions
@@ -1476,7 +1559,8 @@ class FastRunner:
             view = pools[array.dtype][start : start + size].reshape(array.shape)
             view[...] = array
             object.__setattr__(self, name, view)
-        return (pools[np.dtype(np.int64)], pools[np.dtype(np.float64)], lay, self._sweep_callback)
+        self._cell_views = None
+        return (pools[np.dtype(np.int64)], pools[np.dtype(np.float64)], lay)
 
     def _dummy_arrays(self, k: Any) -> None:
         """Arrays of the kernel's types for a call that returns at once (the warm-up)."""
@@ -1504,6 +1588,97 @@ class FastRunner:
         self.bounds_c = np.zeros((1, 2), dtype=np.float64)
         self.bounds_r = np.zeros((1, 2), dtype=np.int64)
         self.pieces = np.zeros((1, 3), dtype=np.float64)
+
+
+_MIRRORED_WORLD_METHODS = (
+    "sweep_collides",
+    "certified_free",
+    "_closest",
+    "place_probe",
+    "clear_within",
+)
+"""The world's methods :func:`_sweep_queries` mirrors or calls: replaced on the instance (a test,
+a wrapper), the world's own ``sweep_collides`` runs instead."""
+
+
+def _sweep_queries(world: Any) -> Callable[[float, float, float, float], bool]:
+    """``world.sweep_collides(x0, y0, x1, y1)`` after its first line, for a move its
+    ``certified_free`` does not prove free (the kernel knows that, with no side effect to make):
+    the same statements in the same order (fingerprints ``World.sweep_collides``,
+    ``World._closest``, ``World.place_probe``), so the same answer, safe ball and pybullet
+    queries, without the Python calls around them. A world of one solid body gets
+    ``_closest``'s lines inline (the footprint's shape placed by the query); any other calls
+    ``world._closest``."""
+    module = sys.modules[type(world).__module__]
+    pb = module.pb
+    metres = module.METRES_PER_UNIT
+    tolerance = module.CONTACT_TOLERANCE
+    half_tolerance = tolerance / 2
+    safe_reach = module.SAFE_REACH
+    max_queries = module.MAX_SWEEP_QUERIES
+    height = module.WALL_HEIGHT / 4 * metres
+    hypot, inf = math.hypot, math.inf
+    closest: Callable[[float, float, float], Any]
+    single = world._single
+    if single is not None:
+        shape, client = world._probe_shape, world.client
+        points_of = pb.getClosestPoints
+
+        def closest_single(x: float, y: float, reach: float) -> Any:
+            far = (reach + tolerance) * metres
+            return points_of(
+                -1,
+                single,
+                far,
+                collisionShapeA=shape,
+                collisionShapePositionA=(x * metres, y * metres, height),
+                physicsClientId=client,
+            )
+
+        closest = closest_single
+    else:
+        closest = world._closest
+
+    def queries(x0: float, y0: float, x1: float, y1: float) -> bool:
+        length = hypot(x1 - x0, y1 - y0)
+        if length == 0.0:
+            return not world.clear_within(x0, y0, 0.0)
+        ux, uy = (x1 - x0) / length, (y1 - y0) / length
+        look = max(length, safe_reach)
+        points = closest(x0, y0, look)
+        gap = min((p[8] for p in points), default=inf) / metres
+        world._safe = (x0, y0, min(gap, look) - tolerance)
+        travelled = 0.0
+        for _ in range(max_queries):
+            advance = inf
+            for point in points:
+                distance = point[8] / metres
+                if distance < tolerance:
+                    return True
+                normal = point[7]
+                rate = ux * normal[0] + uy * normal[1]
+                if rate < 0.0:
+                    advance = min(advance, (distance - half_tolerance) / -rate)
+            travelled += advance
+            if travelled >= length:
+                return False
+            points = closest(x0 + travelled * ux, y0 + travelled * uy, length - travelled)
+        return True
+
+    return queries
+
+
+def _flat(array: np.ndarray, code: str) -> memoryview:
+    """A flat memoryview of a C-contiguous array's own memory (``cast`` raises otherwise)."""
+    return memoryview(array).cast("B").cast(code)
+
+
+def _address(callback: Any) -> int:
+    """The C address of a ctypes callback (the kernel calls it there; the caller keeps the
+    callback alive)."""
+    address = ctypes.cast(callback, ctypes.c_void_p).value
+    assert address is not None
+    return address
 
 
 def _resized(array: np.ndarray, rows: int) -> np.ndarray:

@@ -25,6 +25,7 @@ from bullet_maze.robots.body import Body, JointInfo
 from bullet_maze.robots.car_compass import CarCompass
 from bullet_maze.robots.commands import Command
 from bullet_maze.robots.drives import (
+    DEFAULT_BRAKING,
     AckermannDrive,
     DifferentialDrive,
     Drive,
@@ -354,6 +355,7 @@ def _differential(spec: RobotSpec, body: Body) -> DifferentialDrive:
         wheel_speed=spec.max_wheel_speed,
         wheel_torque=spec.wheel_torque,
         turn_rate=2.0 * speed / track if spec.max_turn_rate is None else spec.max_turn_rate,
+        braking=DEFAULT_BRAKING if spec.braking is None else spec.braking,
     )
     return DifferentialDrive(
         body,
