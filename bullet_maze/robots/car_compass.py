@@ -102,9 +102,9 @@ def plan(heading: float, move: Move, radius: float) -> list[Segment]:
     cos_h, sin_h = math.cos(heading), math.sin(heading)
     ahead = dx * cos_h + dy * sin_h
     left = -dx * sin_h + dy * cos_h
-    direction = -1.0 if ahead < 0.0 else 1.0
-    if abs(ahead) <= STRAIGHT_EPSILON:
+    if abs(ahead) <= STRAIGHT_EPSILON:  # rounding (cos(pi / 2) is not 0) decides no direction
         ahead = 0.0
+    direction = -1.0 if ahead < 0.0 else 1.0
     if abs(left) <= STRAIGHT_EPSILON:
         return [Segment(ahead, 0.0)] if ahead != 0.0 else []
     if abs(left) <= 2.0 * radius:

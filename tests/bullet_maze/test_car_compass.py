@@ -50,6 +50,9 @@ def test_the_plan_reaches_the_intent_exactly_by_arcs_and_straights(
 def test_a_step_across_the_heading_is_a_zig_zag_and_along_it_a_drive() -> None:
     across = plan(math.pi / 2, Move(5.0, 0.0), R)
     assert [math.copysign(1, s.distance) for s in across] == [1, 1, -1, -1]
+    # Without an along part (cos(pi / 2) rounds to 6e-17) the zig-zag starts forwards.
+    left = plan(math.pi / 2, Move(-5.0, 0.0), R)
+    assert [math.copysign(1, s.distance) for s in left] == [1, 1, -1, -1]
     assert sum(abs(s.distance) for s in across) == pytest.approx(4 * R * math.acos(1 - 2.5 / 2 / R))
     assert plan(math.pi / 2, Move(0.0, 5.0), R) == [(5.0, 0.0)]
     # A little sideways noise on a step along the heading: one lane change and a straight.
