@@ -117,7 +117,8 @@ class TreeConfig:
     initial leaves + ``leaves_per_terminal`` x n (and ``max_leaves``). Splitting before any
     episode has ended fragments the explored region on errors of step costs alone and can fill
     the leaf cap before the goal's value arrives. 0: off (the paper: split whenever the test
-    passes)."""
+    passes). Measured on the development cases and not adopted by the general preset
+    (docs/paper-notes.md, "A leaf budget that grows with the terminals")."""
 
     def __post_init__(self) -> None:
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)

@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import dataclasses
+import json
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+import gymnasium as gym
 import numpy as np
 import pytest
+from gymnasium import spaces
 
+import bullet_maze  # noqa: F401 (registers the env)
 from agent import TreeAgent, TreeConfig, preset
 from agent.fast_loop import ineligible_reason
 from agent.partition_tree import GatedPartitionTree, PartitionTree
@@ -21,7 +25,9 @@ def trained(
     make_corridor: Callable[..., Any], config: TreeConfig, episodes: int, **env: Any
 ) -> tuple[TreeAgent, list[Any]]:
     corridor = make_corridor(**env)
-    agent = TreeAgent(corridor.observation_space, corridor.action_space, "epsilon-greedy", 0, config)
+    agent = TreeAgent(
+        corridor.observation_space, corridor.action_space, "epsilon-greedy", 0, config
+    )
     history = agent.learn(corridor, episodes, reset_seed=0)
     return agent, history
 
@@ -78,13 +84,11 @@ def test_the_count_is_saved_and_learning_continues_the_same(
     env_a, env_b = make_corridor(), make_corridor()
     a = [s.steps for s in agent.learn(env_a, 10, reset_seed=5)]
     b = [s.steps for s in loaded.learn(env_b, 10, reset_seed=5)]
-    assert a == b and agent.n_leaves == loaded.n_leaves
+    assert a == b
+    assert agent.n_leaves == loaded.n_leaves
 
 
 def test_the_fast_loop_leaves_a_gated_tree_to_the_reference() -> None:
-    import bullet_maze  # noqa: F401 (registers the env)
-    import gymnasium as gym
-
     env = gym.make("BulletMaze-v0", mode="kinematic")
     config = TreeConfig(leaves_per_terminal=4)
     agent = TreeAgent(env.observation_space, env.action_space, "epsilon-greedy", 0, config)
@@ -99,6 +103,21 @@ def test_the_general_preset_with_a_budget_builds() -> None:
 
 
 def _spaces() -> tuple[Any, Any]:
-    from gymnasium import spaces
-
     return spaces.Box(0.0, 1.0, shape=(2,), dtype=np.float64), spaces.Discrete(4)
+
+
+@pytest.mark.parametrize("bad", [-1, 2.5, True, "3", None])
+def test_a_tampered_terminal_count_is_refused_by_name(
+    make_corridor: Callable[..., Any], tmp_path: Path, bad: Any
+) -> None:
+    config = dataclasses.replace(FINE, leaves_per_terminal=2)
+    agent, _ = trained(make_corridor, config, 5)
+    path = agent.save(tmp_path / "gated")
+    with np.load(path, allow_pickle=False) as data:
+        arrays = {name: data[name].copy() for name in data.files}
+    meta = json.loads(arrays.pop("metadata").tobytes())
+    meta["learner"]["gate"]["terminals"] = bad
+    target = tmp_path / "tampered.npz"
+    np.savez(target, metadata=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **arrays)
+    with pytest.raises(ValueError, match=r"tampered.*terminals"):
+        TreeAgent.load(target)
