@@ -40,7 +40,12 @@ EV_PY_TAIL = 8
 EV_CALLBACK_ERROR = 9
 
 SWEEP_CALLBACK = ctypes.CFUNCTYPE(
-    ctypes.c_int64, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_int64
+    ctypes.c_int64,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_int64,
 )
 """The driver's sweep, called from the kernel without returning (about 0.3 us a call against
 several for a return): ``sweep(x0, y0, x1, y1, known)`` answers ``World.sweep_collides(x0, y0,
@@ -1263,8 +1268,9 @@ def call_sweep(typingctx, address, x0, y0, x1, y1, known):
     """Call the SWEEP_CALLBACK at ``address`` (an int64) with the move and ``known``: the
     driver stores its callback's address in ``st[I_SWEEP]`` instead of passing the ctypes
     object, whose unboxing cost several us at every call of :func:`run_pooled`."""
-    signature = types.int64(types.int64, types.float64, types.float64, types.float64,
-                            types.float64, types.int64)
+    signature = types.int64(
+        types.int64, types.float64, types.float64, types.float64, types.float64, types.int64
+    )
 
     def codegen(context, builder, sig, args):
         double, int64 = ir.DoubleType(), ir.IntType(64)

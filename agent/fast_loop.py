@@ -49,7 +49,7 @@ import sys
 import textwrap
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker, TimeLimit
@@ -1662,9 +1662,9 @@ def _sweep_queries(world: Any) -> Callable[[float, float, float, float], bool]:
     return queries
 
 
-def _flat(array: np.ndarray, code: str) -> memoryview:
+def _flat(array: np.ndarray, code: Literal["d", "q"]) -> memoryview[Any]:
     """A flat memoryview of a C-contiguous array's own memory (``cast`` raises otherwise)."""
-    return memoryview(array).cast("B").cast(code)
+    return array.data.cast("B").cast(code)
 
 
 def _address(callback: Any) -> int:
