@@ -3,6 +3,7 @@ cell import answer exactly as ``World.sweep_collides`` and ``FastRunner._import_
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import gymnasium as gym
@@ -11,6 +12,7 @@ import pytest
 
 import bullet_maze  # noqa: F401  (registers BulletMaze-v0)
 from agent import fast_loop
+from bullet_maze.world import CELL
 from experiments import factory
 from experiments.config import load_config
 from experiments.seeding import derive_seeds, run_seed
@@ -32,10 +34,11 @@ def _world_state(world: Any) -> tuple[Any, ...]:
 
 @pytest.mark.parametrize("maze", [None, FOREST])
 def test_the_mirrored_queries_answer_as_sweep_collides(maze: str | None) -> None:
-    """Same moves on two copies of one world: ``sweep_collides`` on one, ``certified_free``
-    then the mirrored queries on the other; the answers, safe ball, probe position and cell
-    cache agree after every move (one solid body: the inline ``_closest``; a forest of many
-    bodies: ``World._closest`` itself)."""
+    """Same moves on two copies of one world: ``sweep_collides`` on one, on the other what the
+    kernel and the driver do (the safe ball, then the mirrored lines from the unseen cell's
+    bounds, or ``certified_free`` on a known cell then the mirrored queries); the answers, safe
+    ball, probe position and cell cache agree after every move (one solid body: the inline
+    ``_closest``; a forest of many bodies: ``World._closest`` itself)."""
     kwargs = {} if maze is None else {"maze": maze}
     envs = [gym.make("BulletMaze-v0", **kwargs) for _ in range(2)]
     try:
@@ -45,7 +48,7 @@ def test_the_mirrored_queries_answer_as_sweep_collides(maze: str | None) -> None
         width, height = envs[0].unwrapped._arena
         rng = np.random.default_rng(7)
         x, y = width / 2, height / 2
-        decided = 0
+        decided = unseen = 0
         for i in range(1500):
             if i % 50 == 0:  # a new start anywhere (inside solids too)
                 x, y = (float(v) for v in rng.uniform(-5.0, [width + 5.0, height + 5.0]))
@@ -53,16 +56,25 @@ def test_the_mirrored_queries_answer_as_sweep_collides(maze: str | None) -> None
             angle = float(rng.uniform(0.0, 2 * np.pi))
             x1, y1 = x + length * np.cos(angle), y + length * np.sin(angle)
             expected = worlds[0].sweep_collides(x, y, x1, y1)
-            if worlds[1].certified_free(x, y, x1, y1):
+            world = worlds[1]
+            cx, cy, safe = world._safe
+            cell = (int(x // CELL), int(y // CELL))
+            if math.hypot(x1 - cx, y1 - cy) <= safe and math.hypot(x - cx, y - cy) <= safe:
+                found = False  # what the kernel proves itself
+            elif cell not in world._cells:  # the kernel's known = 2
+                found = queries(x, y, x1, y1, 2)
+                unseen += 1
+            elif world.certified_free(x, y, x1, y1):  # a known cell: no side effect
                 found = False
-            else:
-                found = queries(x, y, x1, y1)
+            else:  # known = 1
+                found = queries(x, y, x1, y1, 1)
                 decided += 1
             assert found == expected, (i, x, y, x1, y1)
             assert _world_state(worlds[1]) == _world_state(worlds[0]), i
             if not expected:
                 x, y = x1, y1
-        assert decided > 300  # the mirrored queries answered many of them
+        assert decided > 300  # the mirrored lines answered many of them
+        assert unseen > 100
     finally:
         for env in envs:
             env.close()
