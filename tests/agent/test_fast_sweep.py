@@ -3,6 +3,7 @@ cell import answer exactly as ``World.sweep_collides`` and ``FastRunner._import_
 
 from __future__ import annotations
 
+import gc
 import math
 from typing import Any
 
@@ -127,3 +128,39 @@ def fast_loop_kernel() -> Any:
     kernel = fast_loop.load_kernel()
     assert kernel is not None
     return kernel
+
+
+@pytest.mark.parametrize("enabled", [True, False])
+def test_the_collector_is_as_the_caller_left_it_after_an_episode_even_one_that_raised(
+    enabled: bool,
+) -> None:
+    env = gym.make("BulletMaze-v0", max_episode_steps=600)
+    try:
+        agent = fig4_agent("adaptive+tabu", env)
+        world = env.unwrapped.world
+        original = world.sweep_collides
+        calls = [0]
+        limit = [10**9]
+        seen: list[bool] = []
+
+        def failing(*args: float) -> bool:
+            calls[0] += 1
+            seen.append(gc.isenabled())
+            if calls[0] == limit[0]:
+                raise RuntimeError("a sweep failed")
+            return original(*args)
+
+        world.sweep_collides = failing
+        (gc.enable if enabled else gc.disable)()
+        agent.learn(env, 1, reset_seed=1)
+        assert gc.isenabled() == enabled
+        limit[0] = calls[0] + 5
+        with pytest.raises(RuntimeError, match="a sweep failed"):
+            agent.learn(env, 3)
+        assert gc.isenabled() == enabled
+        assert calls[0] == limit[0]
+        assert seen
+        assert not any(seen)  # off inside the episodes
+    finally:
+        gc.enable()
+        env.close()
