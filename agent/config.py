@@ -110,6 +110,15 @@ class TreeConfig:
     sign of every input from the start, where a task's values are uniform until its goal is
     first reached (Acrobot) and the split test alone never leaves the root."""
 
+    leaves_per_terminal: int = 0
+    """A leaf budget that grows with what the agent has reached (beyond the paper): until the
+    first terminal transition (the goal on a maze; a success or a failure on a classic task)
+    the tree keeps its initial leaves, and after n terminal transitions it holds at most its
+    initial leaves + ``leaves_per_terminal`` x n (and ``max_leaves``). Splitting before any
+    episode has ended fragments the explored region on errors of step costs alone and can fill
+    the leaf cap before the goal's value arrives. 0: off (the paper: split whenever the test
+    passes)."""
+
     def __post_init__(self) -> None:
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)
         _check_range("gamma", self.gamma, 0.0, 1.0)
@@ -139,7 +148,12 @@ class TreeConfig:
         _check_choice("threshold_units", self.threshold_units, ("reward", "scale"))
         _check_choice("planning", self.planning, ("none", "sweep"))
         _check_choice("scale_rule", self.scale_rule, ("reward_median", "return_std", "return_iqr"))
-        for name, least in (("model_window", 1), ("sweep_backups", 0), ("initial_depth", 0)):
+        for name, least in (
+            ("model_window", 1),
+            ("sweep_backups", 0),
+            ("initial_depth", 0),
+            ("leaves_per_terminal", 0),
+        ):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < least:
                 raise ValueError(f"TreeConfig.{name} must be an int >= {least}, got {value!r}")

@@ -114,6 +114,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_bonus": (float, int),
     "initial_depth": int,
     "presplit_each_dimension": bool,
+    # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off
+    "leaves_per_terminal": int,
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""
@@ -324,7 +326,7 @@ FINGERPRINTS = {
     "BulletMazeEnv.fast_core": "7936da0308bf1673",
     "World.certified_free": "4e09b0d9feccf14f",
     "World.sweep_collides": "a558adefa017c807",
-    "World._closest": "f27c663756b45a0f",
+    "World._closest": "f159013e903d93e3",
     "World.place_probe": "108f3db2a31e5627",
     "_CellBounds.clear": "70e9511f5b4adbf8",
 }
@@ -1624,8 +1626,8 @@ def _sweep_queries(world: Any) -> Callable[[float, float, float, float, int], bo
     lookup on (its safe ball does not hold the move). The same statements in the same order
     (fingerprints ``World.sweep_collides``, ``World.certified_free``, ``World._closest``,
     ``World.place_probe``), so the same answer, safe ball, cell cache and pybullet queries,
-    without the Python calls around them. A world of one solid body gets ``_closest``'s and
-    ``place_probe``'s lines inline; any other calls ``world._closest``."""
+    without the Python calls around them. A world of one solid body gets ``_closest``'s lines
+    inline (the footprint's shape placed by the query); any other calls ``world._closest``."""
     module = sys.modules[type(world).__module__]
     cell_size, unseen = module.CELL, module._UNSEEN
     pb = module.pb
@@ -1634,21 +1636,24 @@ def _sweep_queries(world: Any) -> Callable[[float, float, float, float, int], bo
     half_tolerance = tolerance / 2
     safe_reach = module.SAFE_REACH
     max_queries = module.MAX_SWEEP_QUERIES
-    identity = module._IDENTITY
     height = module.WALL_HEIGHT / 4 * metres
     hypot, inf = math.hypot, math.inf
     closest: Callable[[float, float, float], Any]
     single = world._single
     if single is not None:
-        probe, client = world.probe_id, world.client
-        place, points_of = pb.resetBasePositionAndOrientation, pb.getClosestPoints
+        shape, client = world._probe_shape, world.client
+        points_of = pb.getClosestPoints
 
         def closest_single(x: float, y: float, reach: float) -> Any:
             far = (reach + tolerance) * metres
-            if (x, y) != world._probe_xy:
-                place(probe, (x * metres, y * metres, height), identity, physicsClientId=client)
-                world._probe_xy = (x, y)
-            return points_of(probe, single, far, physicsClientId=client)
+            return points_of(
+                -1,
+                single,
+                far,
+                collisionShapeA=shape,
+                collisionShapePositionA=(x * metres, y * metres, height),
+                physicsClientId=client,
+            )
 
         closest = closest_single
     else:

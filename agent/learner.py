@@ -495,6 +495,9 @@ class SMDPAgent:
                 learner["scale"] = self.scale.state()
             if self.model is not None:
                 learner["model"] = self.model.state()
+            terminals = getattr(self.partition, "terminals", None)
+            if terminals is not None:
+                learner["gate"] = {"terminals": terminals}
             if learner:
                 metadata["learner"] = learner
         arrays: dict[str, Any] = {
@@ -565,6 +568,11 @@ class SMDPAgent:
                 agent.scale.restore(learner["scale"])
             if "model" in learner and agent.model is not None:
                 agent.model = LeafModel.from_state(agent.n_actions, learner["model"])
+            if "gate" in learner and hasattr(agent.partition, "terminals"):
+                terminals = learner["gate"].get("terminals")
+                if isinstance(terminals, bool) or not isinstance(terminals, int) or terminals < 0:
+                    raise ValueError(f"learner gate terminals {terminals!r} is not an int >= 0")
+                setattr(agent.partition, "terminals", terminals)  # noqa: B010 (a gated tree)
         except (
             TypeError,
             ValueError,

@@ -343,3 +343,32 @@ class PartitionTree:
                 [int(c[0]), int(c[1]), float(c[2]), float(c[3])],
             )
         return tree
+
+
+class GatedPartitionTree(PartitionTree):
+    """The tree with a leaf budget that grows with the terminal transitions seen (beyond the
+    paper; ``TreeConfig.leaves_per_terminal``).
+
+    The split test is the paper's (:meth:`PartitionTree.record`); a leaf that passes it splits
+    only while the tree holds fewer than its initial leaves + ``leaves_per_terminal`` x
+    :attr:`terminals` leaves. Its pairs are then dropped as after any failed test
+    (``error_buffer="clear"``), so the leaf is tested again on fresh errors.
+    """
+
+    def __init__(self, low: list[float], high: list[float], config: TreeConfig) -> None:
+        super().__init__(low, high, config)
+        self.initial_leaves = self.n_leaves
+        """Leaves after the presplit (the budget's base)."""
+        self.terminals = 0
+        """Terminal transitions seen so far (the learner counts them)."""
+
+    @property
+    def leaf_budget(self) -> int:
+        """Most leaves the tree may hold now."""
+        grown = self.initial_leaves + self.config.leaves_per_terminal * self.terminals
+        return min(grown, self.config.max_leaves)
+
+    def _try_split(self, leaf: int, buf: ErrorBuffer) -> tuple[int, int] | None:
+        if self.n_leaves >= self.leaf_budget:
+            return None
+        return super()._try_split(leaf, buf)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from agent.learner import SMDPAgent
-from agent.partition_tree import PartitionTree
+from agent.partition_tree import GatedPartitionTree, PartitionTree
 
 
 class TreeAgent(SMDPAgent):
@@ -21,7 +21,25 @@ class TreeAgent(SMDPAgent):
     partition: PartitionTree
 
     def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
+        if self.config.leaves_per_terminal > 0:
+            return GatedPartitionTree(low, high, self.config)
         return PartitionTree(low, high, self.config)
+
+    def _end_epoch(
+        self,
+        leaf: int,
+        action: int,
+        xs: list[list[float]],
+        rs: list[float],
+        bootstrap: float,
+        end_x: list[float] | None = None,
+        terminated: bool = False,
+    ) -> bool:
+        """:meth:`SMDPAgent._end_epoch`; a terminal epoch first grows a gated tree's leaf
+        budget (``TreeConfig.leaves_per_terminal``)."""
+        if terminated and type(self.partition) is GatedPartitionTree:
+            self.partition.terminals += 1
+        return super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
 
     @property
     def depth(self) -> int:

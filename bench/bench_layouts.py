@@ -87,28 +87,45 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
     build = time.perf_counter() - start
     unwrapped = env.unwrapped
     layout, world = unwrapped.layout, unwrapped.world
-    queries, query_time = [0], [0.0]
+    # Per query: its CPU time t and the pieces it reported p; sums for the fit t = a + b p.
+    sums = {"n": 0.0, "t": 0.0, "p": 0.0, "pp": 0.0, "pt": 0.0}
     closest = world._closest
 
+    found_by_query: list[int] = []
+
     def counted(x: float, y: float, reach: float) -> list[tuple]:
-        queries[0] += 1
         begin = time.process_time()
         points = closest(x, y, reach)
-        query_time[0] += time.process_time() - begin
+        spent, found = time.process_time() - begin, len(points)
+        sums["n"] += 1
+        sums["t"] += spent
+        sums["p"] += found
+        sums["pp"] += found * found
+        sums["pt"] += found * spent
+        found_by_query.append(found)
         return points
 
     world._closest = counted
     rng = np.random.default_rng(0)
     starts = free_points(layout, rng, 1 + steps // 1000)
     actions = rng.integers(0, 4, steps).tolist()
+    # Per step: the clock after it and the queries made so far (for ``step_fit``; about 0.1 us).
+    ends, made, resets = [0] * steps, [0] * steps, [False] * steps
+    clock = time.perf_counter_ns
     begin = time.process_time()
+    first = clock()
     for i, action in enumerate(actions):
         if i % 1000 == 0:
             env.reset(options={"start": starts[i // 1000]})
+            resets[i] = True
         _, _, terminated, truncated, _ = env.step(action)
         if terminated or truncated:
             env.reset()
+            resets[i] = True
+        ends[i] = clock()
+        made[i] = len(found_by_query)
     kinematic = steps / (time.process_time() - begin)
+    base_us, query_step_us, piece_step_us = step_fit(first, ends, made, resets, found_by_query)
     render_begin = time.perf_counter()
     for _ in range(3):
         env.render()
@@ -123,16 +140,54 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
             dynamic_env.reset()
     dynamic = dynamic_steps / (time.process_time() - begin)
     dynamic_env.close()
+    n = max(sums["n"], 1.0)
+    mean_p, mean_t = sums["p"] / n, sums["t"] / n
+    spread = sums["pp"] / n - mean_p * mean_p
+    per_piece = (sums["pt"] / n - mean_p * mean_t) / spread if spread > 1e-12 else 0.0
     return {
         "solids": layout.solid_count,
         "arena": layout.arena[0],
         "build_ms": build * 1e3,
         "kinematic": kinematic,
-        "queries": queries[0] / steps,
-        "query_us": query_time[0] / max(queries[0], 1) * 1e6,
+        "queries": sums["n"] / steps,
+        "query_us": mean_t * 1e6,
+        "pieces": mean_p,
+        "piece_us": per_piece * 1e6,
+        "step_base_us": base_us,
+        "step_query_us": query_step_us,
+        "step_piece_us": piece_step_us,
         "dynamic": dynamic,
         "render_ms": render * 1e3,
     }
+
+
+def step_fit(
+    first: int, ends: list[int], made: list[int], resets: list[bool], found: list[int]
+) -> tuple[float, float, float]:
+    """A step's time against the queries q it made and the pieces p they reported, t = t0 + a q +
+    b p (microseconds), everything a query costs the step: pybullet's answer and the Python that
+    turns it into a certificate or a sweep's advance. Fitted, weighted by count, to the median
+    time of the steps of each (q, p) seen at least 10 times (medians: a step the machine paused is
+    an outlier), leaving out steps with a reset."""
+    starts = np.array([first, *ends[:-1]])
+    spent = (np.array(ends) - starts) / 1e3
+    queries = np.diff(np.array([0, *made]))
+    cumulative = np.concatenate(([0], np.cumsum(found)))
+    pieces = cumulative[np.array(made)] - cumulative[np.array([0, *made[:-1]])]
+    keep = ~np.array(resets)
+    groups: dict[tuple[int, int], list[float]] = {}
+    for q, p, t in zip(queries[keep], pieces[keep], spent[keep], strict=True):
+        groups.setdefault((int(q), int(p)), []).append(float(t))
+    rows = [
+        (q, p, statistics.median(ts), len(ts)) for (q, p), ts in groups.items() if len(ts) >= 10
+    ]
+    if len({(q, p) for q, p, _, _ in rows}) < 3:
+        return math.nan, math.nan, math.nan
+    table = np.array(rows, dtype=float)
+    weight = np.sqrt(table[:, 3])
+    design = np.column_stack((np.ones(len(table)), table[:, 0], table[:, 1])) * weight[:, None]
+    (t0, a, b), *_ = np.linalg.lstsq(design, table[:, 2] * weight, rcond=None)
+    return float(t0), float(a), float(b)
 
 
 def free_points(layout: bullet_maze.MazeLayout, rng: np.random.Generator, n: int) -> list:
@@ -173,27 +228,67 @@ def bench_solids(
         print(f"round {r + 1}/{rounds} done", file=sys.stderr)
     print(
         "| series | code | solids | arena | build (ms) | kinematic steps/s | vs N=10 | "
-        "queries/step | us/query | dynamic steps/s | vs N=10 | render (ms) |"
+        "certificates' bound: queries | and pieces | and their handling | queries/step | "
+        "pieces/query | us/query | "
+        "dynamic steps/s | vs N=10 | render (ms) |"
     )
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| --- " * 16 + "|")
+    verdicts = []
     for case in found:
         for name, _ in packages:
             rows = results[case, name]
             first = next(c for c in found if c.series == case.series)
             reference = results[first, name]
             med = {key: statistics.median(row[key] for row in rows) for key in rows[0]}
-            kin = statistics.median(
-                a["kinematic"] / b["kinematic"] for a, b in zip(rows, reference, strict=True)
-            )
-            dyn = statistics.median(
-                a["dynamic"] / b["dynamic"] for a, b in zip(rows, reference, strict=True)
-            )
+            pairs = list(zip(rows, reference, strict=True))
+            kin = statistics.median(a["kinematic"] / b["kinematic"] for a, b in pairs)
+            dyn = statistics.median(a["dynamic"] / b["dynamic"] for a, b in pairs)
+            by_count = statistics.median(certificate_bound(a, b, pieces=False) for a, b in pairs)
+            by_pieces = statistics.median(certificate_bound(a, b, pieces=True) for a, b in pairs)
+            by_steps = statistics.median(step_bound(a, b) for a, b in pairs)
             print(
                 f"| {case.series} | {name} | {med['solids']:.0f} | {med['arena']:.0f} | "
                 f"{med['build_ms']:.0f} | {med['kinematic']:,.0f} | {kin:.2f} | "
-                f"{med['queries']:.3f} | {med['query_us']:.1f} | {med['dynamic']:,.0f} | "
+                f"{by_count:.2f} | {by_pieces:.2f} | {by_steps:.2f} | {med['queries']:.3f} | "
+                f"{med['pieces']:.2f} | {med['query_us']:.1f} | {med['dynamic']:,.0f} | "
                 f"{dyn:.2f} | {med['render_ms']:.0f} |"
             )
+            if case.count == max(counts) and name == "this tree":
+                verdicts.append(
+                    f"{case.series}, N = {case.count}: kinematic {kin:.2f} of the N = 10 speed; "
+                    f"the certificates' query count allows {by_count:.2f}, with the pieces each "
+                    f"query reports {by_pieces:.2f}, with the whole cost of handling them in the "
+                    f"step {by_steps:.2f}: "
+                    + ("met" if kin >= by_steps else f"short of that by {by_steps - kin:.2f}")
+                )
+    print()
+    for line in verdicts:
+        print(f"- {line}")
+
+
+def step_bound(row: dict[str, float], reference: dict[str, float]) -> float:
+    """As ``certificate_bound`` with pieces, at what a query and a piece cost the whole N = 10 step
+    (``step_fit`` of the reference: pybullet and the Python that uses the answer)."""
+    step = 1e6 / reference["kinematic"]
+    a, b = reference["step_query_us"], reference["step_piece_us"]
+    extra = a * (row["queries"] - reference["queries"]) + b * (
+        row["queries"] * row["pieces"] - reference["queries"] * reference["pieces"]
+    )
+    return step / (step + extra)
+
+
+def certificate_bound(row: dict[str, float], reference: dict[str, float], pieces: bool) -> float:
+    """The share of the N = 10 case's speed (``reference``, same series, code and round) that a
+    case keeps if only the certificates' pybullet work grows: its step time is the reference's,
+    with the reference's queries per step replaced by the case's at the reference's cost per
+    query; with ``pieces``, a query costs the reference's fit ``a + b p`` of its time against the
+    pieces p it reports (a query that must report more pieces costs more: each is a closest-point
+    computation and a result), evaluated at the case's mean p."""
+    step = 1e6 / reference["kinematic"]  # microseconds
+    cost = reference["query_us"]
+    if pieces:
+        cost += reference["piece_us"] * (row["pieces"] - reference["pieces"])
+    return step / (step + row["queries"] * cost - reference["queries"] * reference["query_us"])
 
 
 LIMIT_CODE = """

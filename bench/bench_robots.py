@@ -15,8 +15,8 @@ ratio or a difference as the median of those measured within each round, so that
 slows a whole round cancels out.
 
 Each robot runs at its own physics settings (its robot file's ``[physics]``: the husky's
-compass steps at 60 Hz with 5 solver iterations, the rover's at 120 Hz); the husky's and the
-rover's compass steps are also run at the fine reference (240 Hz, 10 solver iterations), so the
+compass steps at 60 Hz with 5 solver iterations, the rover's and the racecar's at 120 Hz); their
+compass steps are also run at the fine reference (240 Hz, 10 solver iterations), so the
 speed-up of the coarser step is a ratio measured in the same run. Then the faithfulness of the
 coarser step: compass steps from the same states at rest, at the robot's settings and at the
 fine reference, their end poses compared (and the fine reference's own spread: the same steps
@@ -59,13 +59,15 @@ CASES: tuple[tuple[str, str] | tuple[str, str, dict[str, float]], ...] = (
     ("rover", "compass", FINE),
     ("rover", "native"),
     ("rover", "continuous"),
+    ("racecar", "compass"),
+    ("racecar", "compass", FINE),
     ("racecar", "native"),
     ("racecar", "continuous"),
 )
 """(robot, action set[, env arguments]): every action set each robot of the zoo supports, at
 its own physics, and the coarser compass steps again at the fine reference."""
 
-COMPASS_STEPS = {"husky": 0.1, "rover": 0.1}
+COMPASS_STEPS = {"husky": 0.1, "rover": 0.1, "racecar": 0.02}
 """Compass steps of wheeled robots run hundreds of physics steps: this share of ``--steps``."""
 
 
@@ -172,7 +174,7 @@ def _label(physics: object) -> str:
     return f"{1.0 / time_step:.0f} Hz, {iterations} it."
 
 
-def speed(steps: int, rounds: int) -> dict[tuple[str, str, str], float]:
+def speed(steps: int, rounds: int, only: str | None = None) -> dict[tuple[str, str, str], float]:
     """The dynamic table; returns env steps/s by (robot, actions, physics label)."""
     print("## Dynamic mode, per robot and action set (paper maze, random actions)\n")
     print(
@@ -182,6 +184,8 @@ def speed(steps: int, rounds: int) -> dict[tuple[str, str, str], float]:
     print("| --- | --- | --- | --- | --- | --- | --- |")
     results = {}
     for robot, actions, *rest in CASES:
+        if only is not None and robot != only:
+            continue
         params = rest[0] if rest else None
         n = max(20, int(steps * COMPASS_STEPS.get(robot, 1.0))) if actions == "compass" else steps
         if robot == "disc":
@@ -199,7 +203,9 @@ def speed(steps: int, rounds: int) -> dict[tuple[str, str, str], float]:
             flush=True,
         )
         case.close()
-    for robot in ("husky", "rover"):
+    for robot in ("husky", "rover", "racecar"):
+        if (robot, "compass", "fine") not in results:
+            continue
         own, fine = results[(robot, "compass", "own")], results[(robot, "compass", "fine")]
         print(f"\n{robot} compass at its own physics / at the fine reference: {own / fine:.2f}x")
     return results
@@ -221,7 +227,7 @@ def _compass_ends(robot: str, params: dict[str, float], poses: list, actions: li
     return np.array(ends)
 
 
-def faithfulness(count: int) -> None:
+def faithfulness(count: int, only: str | None = None) -> None:
     """Compass steps at each robot's own physics against the fine reference, from the same
     states at rest (see the module docstring)."""
     print("\n## Faithfulness of the coarser physics (compass steps from the same states at rest)\n")
@@ -231,7 +237,9 @@ def faithfulness(count: int) -> None:
         "max, heading mean / max |"
     )
     print("| --- | --- | --- | --- | --- | --- |")
-    for robot in ("husky", "rover"):
+    for robot in ("husky", "rover", "racecar"):
+        if only is not None and robot != only:
+            continue
         rng = np.random.default_rng(7)
         poses = [(*rng.uniform(100.0, 200.0, 2), rng.uniform(-np.pi, np.pi)) for _ in range(count)]
         actions = [int(a) for a in rng.integers(0, 4, count)]
@@ -348,10 +356,11 @@ def targets(rates: dict[tuple[str, str, str], float], added: dict[str, float]) -
     print("| target | measured | met |")
     print("| --- | --- | --- |")
     rows = []
-    if rates:
+    if ("husky", "compass", "own") in rates:
         husky = rates[("husky", "compass", "own")]
         rows.append(("husky compass >= 4 x 88 = 352 env steps/s", f"{husky:,.0f}", husky >= 352))
-        for robot in ("husky", "racecar"):
+    for robot in ("husky", "racecar"):
+        if (robot, "native", "own") in rates:
             rate = rates[(robot, "native", "own")]
             rows.append((f"{robot} native >= 1,000 env steps/s", f"{rate:,.0f}", rate >= 1000))
     for robot, ms in added.items():
@@ -368,15 +377,16 @@ def main() -> None:
     parser.add_argument(
         "--only", choices=["speed", "faithful", "kinematic", "lidar"], help="one part only"
     )
+    parser.add_argument("--robot", help="speed and faithfulness of this robot only")
     args = parser.parse_args()
     steps, rounds = (200, 2) if args.quick else (args.steps, args.rounds)
     print(f"load average at start: {' '.join(f'{v:.2f}' for v in os.getloadavg())}\n")
     rates: dict[tuple[str, str, str], float] = {}
     added: dict[str, float] = {}
     if args.only in (None, "speed"):
-        rates = speed(steps, rounds)
+        rates = speed(steps, rounds, args.robot)
     if args.only in (None, "faithful"):
-        faithfulness(10 if args.quick else 40)
+        faithfulness(10 if args.quick else 40, args.robot)
     if args.only in (None, "kinematic"):
         kinematic_speed(steps * 10, rounds)
     if args.only in (None, "lidar"):

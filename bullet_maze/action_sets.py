@@ -5,7 +5,9 @@ all share.
   ``step_size`` in that direction. Each drive realises it as it can: a holonomic body is pushed
   along it; a differential robot turns in place to face the target (or to face away from it,
   whichever needs the smaller turn: it may drive backwards) and drives there. A car cannot turn
-  in place; asking for compass actions with one is an error that names the other sets.
+  in place: it keeps its heading and reaches the target by a short manoeuvre of full-lock arcs
+  (``bullet_maze.robots.car_compass``). A drive with neither ability is an error that names the
+  other sets.
 * ``"native"``: the drive's own commands. ``NativeAction`` FORWARD, BACKWARD, TURN_LEFT,
   TURN_RIGHT for differential robots (full speed ahead or astern, or a turn in place at the
   full turn rate) and cars (full speed ahead or astern, or full speed ahead at full lock to
@@ -168,7 +170,10 @@ def make_action_set(name: Any, robot: Robot, step_size: float, period: float) ->
         raise ValueError(f"actions must be one of {list(ACTION_SETS)}, got {name!r}")
     kind = robot.drive.kind
     if name == "compass" or (name == "native" and kind == "holonomic"):
-        if not robot.drive.turns_in_place:
+        drive = robot.drive
+        if not drive.turns_in_place and not (
+            isinstance(drive, AckermannDrive) and drive.manoeuvre is not None
+        ):
             raise ValueError(
                 f"robot {robot.name!r} ({kind} drive) cannot turn in place, so it cannot "
                 f"realise the compass actions (a step of step_size up, down, left or right); "

@@ -122,7 +122,12 @@ class BulletMazeEnv(gym.Env[Any, Any]):
 
       A holonomic robot is pushed along the move; a differential robot turns in place to face
       the target (or away from it, whichever needs the smaller turn) and drives there. A car
-      (ackermann drive) cannot turn in place: compass actions are refused for it.
+      (ackermann drive) cannot turn in place: it keeps its heading and reaches the target by a
+      short manoeuvre of full-lock arcs (a lane change, or a forward-and-back zig-zag for a
+      step across its heading; `bullet_maze.robots.car_compass`), swept arc by arc in
+      kinematic mode (it ends exactly at the target) and driven through its steering hinges
+      and rear wheels in dynamic mode (it ends within about a unit of it; see
+      `docs/robots.md`).
     * `"native"`: `Discrete(4)`, `bullet_maze.NativeAction` FORWARD, BACKWARD, TURN_LEFT,
       TURN_RIGHT at the drive's full speed or turn rate for `control_period` seconds (a car
       turns by driving ahead at full lock); a holonomic robot's native actions are the compass
@@ -392,7 +397,11 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._arena = self.layout.arena
         # The compass set's moves in a dict that takes int and np.int64 alike (the hot path);
         # any other action set goes through its ``check`` and ``command``.
-        self._compass = isinstance(self.actions, CompassActions)
+        # The compass hot path sweeps a straight segment: a car's manoeuvre goes through its
+        # drive's path instead (``_kinematic_step``), like the other action sets.
+        self._compass = (
+            isinstance(self.actions, CompassActions) and self.robot.drive.kind != "ackermann"
+        )
         self._holonomic = self.robot.drive.kind == "holonomic"
         self._moves: dict[int | np.integer, tuple[float, float]] = (
             dict(enumerate(self.actions.moves)) if isinstance(self.actions, CompassActions) else {}

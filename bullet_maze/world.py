@@ -13,15 +13,19 @@ y map to world x and y, z is up. The world holds
   costs about the same per static body whatever its size: 1,000 walls in 8 bodies step 2.5 times
   faster than in 132 compounds of 16);
 * visual-only markers: the green start square and the red goal circle (section V.A);
-* a collision probe: a cylinder of the robot's footprint radius with no visual shape, moved
-  along a step to test it (``sweep_collides``). It is filtered out of the physics simulation;
-  cameras would draw its collision shape, so it is parked under the floor before rendering.
+* a collision probe: a cylinder of the robot's footprint radius with no visual shape. A query
+  (``sweep_collides``) passes its collision shape and the footprint's pose to
+  ``getClosestPoints``, which places it there itself: the probe body's own answers at that pose,
+  bit for bit, without the cost of moving a body (a broadphase update); the body is moved only
+  for the long queries of a layout of several solid bodies. It is filtered out of the physics
+  simulation; cameras would draw its collision shape, so it is parked under the floor before
+  rendering.
 
 Queries in a layout of several solid bodies go to a query index instead (``_RegionIndex``): a
-second pybullet client that only answers distance queries, holding its own probe and, for each
-``REGION``-unit square of the arena that a query has visited, one body whose compound shape holds
-every piece that can lie within ``SAFE_REACH`` of a footprint centred in the square (pieces are
-copied into every square they are near). A query of that reach is then one ``getClosestPoints``
+second pybullet client that only answers distance queries, holding the footprint's shape and, for
+each ``REGION``-unit square of the arena that a query has visited, one body whose compound shape
+holds every piece that can lie within ``SAFE_REACH`` of a footprint centred in the square (pieces
+are copied into every square they are near). A query of that reach is then one ``getClosestPoints``
 call against one body whatever the number of solids; its answers are the same pieces' answers,
 bit for bit, as those of the bodies above (the same shapes at the same places). Longer reaches ask
 the bodies above. The index never takes part in the simulation or in pictures.
@@ -249,6 +253,7 @@ class World:
         shape = pb.createCollisionShape(
             pb.GEOM_CYLINDER, radius=radius * s, height=WALL_HEIGHT / 2 * s, physicsClientId=c
         )
+        self._probe_shape = shape  # queried where the probe would be, without moving it
         probe = pb.createMultiBody(0.0, shape, -1, [0.0, 0.0, -WALL_HEIGHT * s], physicsClientId=c)
         # The probe only answers distance queries; it never touches anything in the simulation.
         pb.setCollisionFilterGroupMask(probe, -1, 0, 0, physicsClientId=c)
@@ -407,8 +412,16 @@ class World:
         s, c = METRES_PER_UNIT, self.client
         far = (reach + CONTACT_TOLERANCE) * s
         if self._single is not None:
-            self.place_probe(x, y)
-            return pb.getClosestPoints(self.probe_id, self._single, far, physicsClientId=c)
+            # The probe's shape at the probe's pose (``place_probe``), placed by the query itself:
+            # the same answers as the probe body's, bit for bit, without a move of its own.
+            return pb.getClosestPoints(
+                -1,
+                self._single,
+                far,
+                collisionShapeA=self._probe_shape,
+                collisionShapePositionA=(x * s, y * s, WALL_HEIGHT / 4 * s),
+                physicsClientId=c,
+            )
         if reach <= SAFE_REACH and self._index is not None:
             return self._index.closest(x, y, far)
         self.place_probe(x, y)
@@ -478,9 +491,10 @@ class _CellBounds:
 
 
 class _RegionIndex:
-    """The query index of a layout of several solid bodies: a pybullet client of its own with a
-    probe and one static body per ``REGION`` square of the arena (those outside it, which a move
-    through the arena's wall may visit, when first asked; see the module docstring)."""
+    """The query index of a layout of several solid bodies: a pybullet client of its own with the
+    footprint's collision shape and one static body per ``REGION`` square of the arena (those
+    outside it, which a move through the arena's wall may visit, when first asked; see the module
+    docstring)."""
 
     def __init__(
         self, pieces: list[_Piece], robot_radius: float, arena: tuple[float, float]
@@ -497,11 +511,12 @@ class _RegionIndex:
         self.client = pb.connect(pb.DIRECT)
         self._finalizer = weakref.finalize(self, _disconnect, self.client)
         s, c = METRES_PER_UNIT, self.client
-        shape = pb.createCollisionShape(
+        # The footprint is a collision shape, not a body: a query places it itself. Moving a probe
+        # body costs a broadphase update that grows with the bodies in the client (0.9 us alone,
+        # 1.7 us among the 100 squares of a 1,880 x 1,880 maze) and a command of its own.
+        self._shape = pb.createCollisionShape(
             pb.GEOM_CYLINDER, radius=robot_radius * s, height=WALL_HEIGHT / 2 * s, physicsClientId=c
         )
-        self.probe_id = pb.createMultiBody(0.0, shape, -1, physicsClientId=c)
-        self._probe_xy = (math.nan, math.nan)
         self._bodies: dict[tuple[int, int], int | None] = {}
         for i in range(int(arena[0] // REGION) + 1):
             for j in range(int(arena[1] // REGION) + 1):
@@ -516,15 +531,17 @@ class _RegionIndex:
             body = self._bodies[square] = self._build(square)
         if body is None:
             return []
-        c = self.client
-        if (x, y) != self._probe_xy:
-            s = METRES_PER_UNIT
-            position = (x * s, y * s, WALL_HEIGHT / 4 * s)
-            pb.resetBasePositionAndOrientation(
-                self.probe_id, position, _IDENTITY, physicsClientId=c
-            )
-            self._probe_xy = (x, y)
-        return pb.getClosestPoints(self.probe_id, body, far, physicsClientId=c)
+        s = METRES_PER_UNIT
+        # The footprint's shape at the pose a probe body would have (World.place_probe): the same
+        # transform, hence the same answers bit for bit (tests compare them with the probe's).
+        return pb.getClosestPoints(
+            -1,
+            body,
+            far,
+            collisionShapeA=self._shape,
+            collisionShapePositionA=(x * s, y * s, WALL_HEIGHT / 4 * s),
+            physicsClientId=self.client,
+        )
 
     def _build(self, square: tuple[int, int]) -> int | None:
         """The square's body: the pieces whose bounding box comes within the margin of it, as one

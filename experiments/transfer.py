@@ -10,7 +10,7 @@ level's settings are :func:`bullet_maze.perturbations.level_settings` for the ce
 mode; the training environment's own perturbations are replaced by them, its other arguments
 kept. A position-only policy on a robot that also observes its heading sees ``(x, y)`` only
 (:class:`experiments.factory.ProjectObservation`, as ``run.py evaluate`` does). A condition the
-agent cannot act in (the racecar has no compass actions) is listed with the reason, not run.
+agent cannot act in (a base of mass 0 in dynamic mode) is listed with the reason, not run.
 
 Each cell (agent x condition) is ``episodes`` greedy episodes, the first reset seeded from the
 agent's run seed and the condition (:func:`cell_seed`): the same whatever the backend, the

@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, replace
+from typing import Protocol
 
 import pybullet as pb
 
@@ -101,6 +102,11 @@ def arc_points(pose: Pose, pivot: Point, distance: float, turn: float) -> tuple[
     return points, end
 
 
+DEFAULT_BRAKING = 5.0
+"""m/s^2: ``DriveLimits.braking`` of a differential robot whose file does not say (measured
+from top speed: rover 5.5; the husky, braked by all four wheels, 10-12)."""
+
+
 @dataclass(frozen=True)
 class DriveLimits:
     """The actuators' limits (SI units at the robot's scale); ``Drive.limits`` is read at every
@@ -116,6 +122,11 @@ class DriveLimits:
     """rad: ackermann: the largest steering angle of the inner wheel."""
     steering_torque: float = 0.0
     """N m: ackermann: each steering hinge's motor force limit."""
+    braking: float = DEFAULT_BRAKING
+    """m/s^2: differential: the base's deceleration with its wheels stopped, which the compass
+    controller plans its stops with (a robot file's ``limits.braking``; the friction
+    perturbations leave it nominal, and a stop they lengthen or shorten is corrected from the
+    measured pose)."""
 
 
 class Drive(ABC):
@@ -298,7 +309,9 @@ class DifferentialDrive(Drive):
         # A skid-steered turn in place may swing the base round a pivot away from it.
         self.reach_margin = body.radius
         self._indices = [w.index for w in left + right]
-        self._signs = [w.sign for w in left + right]
+        self._left_signs = [w.sign for w in left]
+        self._right_signs = [w.sign for w in right]
+        self._half_track = track / 2.0
         self._sent: tuple[float, float] | None = None
         self.controller = CompassController(self)
 
@@ -318,20 +331,22 @@ class DifferentialDrive(Drive):
     def set_wheels(self, speed: float, turn_rate: float) -> None:
         """Wheel velocity targets for a base speed (m/s) and turn rate (rad/s); a command equal
         to the last one is not sent again."""
-        if (speed, turn_rate) == self._sent:
-            return
+        if (speed, turn_rate) != self._sent:
+            self.send_wheels(speed, turn_rate)
+
+    def send_wheels(self, speed: float, turn_rate: float) -> None:
+        """``set_wheels`` without the check: one ``setJointMotorControlArray`` for every wheel
+        (left ``(v - w t / 2) / r``, right ``(v + w t / 2) / r``, each times its sign)."""
         self._sent = (speed, turn_rate)
-        r, half = self.wheel_radius, self.track / 2.0
+        r, half = self.wheel_radius, self._half_track
         left, right = (speed - turn_rate * half) / r, (speed + turn_rate * half) / r
-        targets = [
-            sign * (left if i < len(self.left) else right) for i, sign in enumerate(self._signs)
-        ]
         pb.setJointMotorControlArray(
             self.body.id,
             self._indices,
             pb.VELOCITY_CONTROL,
-            targetVelocities=targets,
-            forces=[self.limits.wheel_torque] * len(targets),
+            targetVelocities=[sign * left for sign in self._left_signs]
+            + [sign * right for sign in self._right_signs],
+            forces=[self.limits.wheel_torque] * len(self._indices),
             physicsClientId=self.client,
         )
 
@@ -377,24 +392,27 @@ class CompassController:
     short starts again from the measured state. (A skid-steered robot cannot follow a small
     turn-rate command, its wheels' lateral friction holds it, so a proportional law creeps
     through the last tenths of a radian; a turn that brakes on the measured rate does not.) The
-    drive commands the speed from which the wheels can still stop (at ``DRIVE_BRAKING``) in the
-    distance left after the next update at the measured speed, at most the top speed, slowed by
-    the cosine of the heading error, steering at the heading the measured yaw rate leads to
-    (``STEER_LEAD``). ``max_turn_substeps`` and ``max_drive_substeps`` (``PhysicsParams``)
-    bound the phases.
+    drive does the same along its axis: it commands the speed from which the wheels can still
+    stop in the distance left (``sqrt(2 a d)``, ``a`` the drive's ``limits.braking``; at most
+    the top speed) until the distance the robot would still cover if its wheels stopped now
+    (its measured speed v over the next update and ``DRIVE_LAG``, plus v^2 / (2 a)) reaches the
+    distance left, then stops the wheels; slowed by the cosine of the heading error, steering
+    at the heading the measured yaw rate leads to (``STEER_LEAD``). ``max_turn_substeps`` and
+    ``max_drive_substeps`` (``PhysicsParams``) bound the phases.
 
-    Chosen on 60-step random walks in ``open`` without noise (husky at 60 Hz: ends 0.08 units
-    from the target on average, at most 0.30, about 62 physics steps per step; rover at
-    120 Hz: 0.27, at most 0.56, about 134 physics steps); the controller it replaced, at
-    240 Hz on 40-step walks: husky 0.12 and 316 physics steps, rover 0.29 and 304.
+    Chosen on the bench's compass workload (200 seeded random steps in the paper maze, noise
+    on) and on 100-step random walks in ``open`` without noise: the husky at 60 Hz with
+    ``limits.braking`` 11 takes 55 physics steps per step (the speed profile it replaced, which
+    planned with 5 m/s^2 and no stop, took 65) and ends 0.09 units from the target on average;
+    the rover at 120 Hz (braking 5) 119 (was 135) and 0.20 units (was 0.30).
     """
 
     TURN_BRAKING = 25.0
     """rad/s^2: the yaw deceleration assumed when the wheels stop (measured from 1.7 rad/s:
     husky 30, rover 26, at 240 Hz and 60 Hz alike)."""
-    DRIVE_BRAKING = 5.0
-    """m/s^2: the deceleration assumed when the wheels stop while driving (measured from top
-    speed: husky 9-10, rover 5.5)."""
+    DRIVE_LAG = 0.03
+    """Seconds the base runs on at its speed after the wheels stop (the contacts' give): the
+    husky's speed falls about two physics steps after the command at 60 Hz."""
     STEER_GAIN = 10.0
     """1/s: turn rate command per radian of heading error while driving..."""
     STEER_LEAD = 0.2
@@ -423,27 +441,40 @@ class CompassController:
         drive = self.drive
         physics = drive.physics
         client, body = drive.client, drive.body.id
-        # Bound once: the loop runs at every control update (about 60 per husky step).
+        # Bound once: the loop runs at every control update (about 60 per husky step), where a
+        # physics step costs about 25 us and each Python-side microsecond shows.
         step, velocity, place = (
             pb.stepSimulation,
             pb.getBaseVelocity,
             pb.getBasePositionAndOrientation,
         )
-        atan2, cos, sin, hypot, tau = math.atan2, math.cos, math.sin, math.hypot, 2.0 * math.pi
-        offset = drive.forward + math.pi  # heading = wrap(yaw + forward), as pose_metres
+        send, touching = drive.send_wheels, None if watch is None else watch.touching
+        atan2, cos, sin, hypot, sqrt, copysign = (
+            math.atan2,
+            math.cos,
+            math.sin,
+            math.hypot,
+            math.sqrt,
+            math.copysign,
+        )
+        pi, tau, half_pi = math.pi, 2.0 * math.pi, math.pi / 2
+        offset = drive.forward + pi  # heading = wrap(yaw + forward), as pose_metres
         s = METRES_PER_UNIT
         x0, y0, heading = drive.pose_metres()
         tx, ty = x0 + move.dx * s, y0 + move.dy * s  # metres, like everything below
         reverse = facing(heading, move.dx, move.dy) != math.atan2(move.dy, move.dx)
-        flip = math.pi if reverse else 0.0
+        flip = pi if reverse else 0.0
         bearing = math.atan2(move.dy, move.dx)
         aim, tolerance = self.AIM_RADIUS * s, self.DISTANCE_TOLERANCE * s
         top_speed, top_spin = drive.max_speed * s, drive.max_turn_rate
         period = max(1, round(self.CONTROL_INTERVAL / physics.time_step))
+        ticks = range(period)
         lead = period * physics.time_step  # seconds until the next update
-        turn_brake, drive_brake = 2.0 * self.TURN_BRAKING, 2.0 * self.DRIVE_BRAKING
+        turn_brake, drive_brake = 2.0 * self.TURN_BRAKING, 2.0 * drive.limits.braking
+        drive_lead = lead + self.DRIVE_LAG
         heading_tolerance, settled_spin = self.HEADING_TOLERANCE, self.SETTLED_SPIN
         settled_speed, steer_gain, steer_lead = self.SETTLED_SPEED, self.STEER_GAIN, self.STEER_LEAD
+        sent = drive._sent  # the wheels' last command: a command is sent only when it changes
         substep = 0
         touched = False
         for turning, limit in (
@@ -455,12 +486,12 @@ class CompassController:
                 (x, y, _), (qx, qy, qz, qw) = place(body, client)
                 heading = (
                     atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz)) + offset
-                ) % tau - math.pi
+                ) % tau - pi
                 (vx, vy, _), (_, _, spin) = velocity(body, client)
                 ex, ey = tx - x, ty - y
                 if hypot(ex, ey) > aim:
                     bearing = atan2(ey, ex)
-                error = (bearing + flip - heading + math.pi) % tau - math.pi
+                error = (bearing + flip - heading + pi) % tau - pi
                 if turning:
                     if abs(error) < heading_tolerance and abs(spin) < settled_spin:
                         break
@@ -469,32 +500,43 @@ class CompassController:
                     if spin * error > 0.0 and coasting >= abs(error):
                         turn = 0.0
                     else:
-                        turn = math.copysign(top_spin, error)
+                        turn = copysign(top_spin, error)
                 else:
                     # Steer the robot's axis at the point, whichever end faces it: past the
                     # point (an overshoot) it backs up instead of turning round.
-                    if abs(error) > math.pi / 2:
-                        error = wrap_angle(error + math.pi)
+                    if abs(error) > half_pi:
+                        error = (error + pi + pi) % tau - pi  # wrap_angle(error + pi)
                     ch, sh = cos(heading), sin(heading)
                     remaining = ex * ch + ey * sh
                     if abs(remaining) < tolerance and hypot(vx, vy) < settled_speed:
                         break
-                    # The speed from which the wheels still stop in the distance left after
-                    # the next update at the measured speed.
-                    along = vx * ch + vy * sh
-                    room = max(0.0, abs(remaining) - abs(along) * lead)
-                    speed = min(top_speed, math.sqrt(drive_brake * room))
-                    forward = math.copysign(speed, remaining) * max(0.0, cos(error))
+                    # Stop the wheels once the robot would coast to the point; until then the
+                    # speed from which they still stop there.
+                    along, left = vx * ch + vy * sh, abs(remaining)
+                    if along * remaining > 0.0 and (
+                        abs(along) * drive_lead + along * along / drive_brake >= left
+                    ):
+                        speed = 0.0
+                    else:
+                        speed = min(top_speed, sqrt(drive_brake * left))
+                    forward = copysign(speed, remaining) * max(0.0, cos(error))
                     # Steer at the heading the measured yaw rate leads to (a robot's yaw lags
                     # its wheels' command by about a tenth of a second).
                     ahead = error - steer_lead * spin
                     turn = min(top_spin, max(-top_spin, steer_gain * ahead))
-                drive.set_wheels(forward, turn)
-                for _ in range(period):
+                if (forward, turn) != sent:
+                    send(forward, turn)
+                    sent = (forward, turn)
+                if touching is None or touched:
+                    for _ in ticks:
+                        step(client)
+                    substep += period
+                    continue
+                for _ in ticks:
                     step(client)
                     substep += 1
-                    if watch is not None and substep > 1 and not touched:
-                        touched = watch.touching(body)
+                    if substep > 1 and not touched:
+                        touched = touching(body)
                         if touched and stop_on_touch:
                             drive.set_wheels(0.0, 0.0)
                             return True
@@ -513,9 +555,23 @@ class Hinge:
     """Metres to the left of the centre line (at the robot's scale)."""
 
 
+class Manoeuvre(Protocol):
+    """How a car realises a displacement (``Move``): ``bullet_maze.robots.car_compass``."""
+
+    def path(self, pose: Pose, move: Move) -> tuple[list[Point], Pose]: ...
+
+    def run(self, move: Move, watch: World | None, stop_on_touch: bool) -> bool: ...
+
+    def reach(self, move: Move) -> float: ...
+
+
 class AckermannDrive(Drive):
     """A car: driven (rear) wheels, steering hinges in position control, free wheels at motor
     force 0, as in pybullet's ``examples/racecar.py``. It cannot turn in place.
+
+    A ``Move`` (a compass action) is realised by ``manoeuvre`` (a short manoeuvre of arcs that
+    keeps the heading, ``bullet_maze.robots.car_compass``), in both modes; without one it is
+    an error.
 
     Kinematic mode: the bicycle model about the middle of the driven axle: a ``Twist`` of
     distance d turns by at most d times the largest curvature ``max_curvature``. Dynamic mode:
@@ -553,6 +609,8 @@ class AckermannDrive(Drive):
         self._sent: tuple[float, float] | None = None
         inner = max((abs(h.lateral) for h in hinges), default=0.0)
         self._inner = inner
+        self.manoeuvre: Manoeuvre | None = None
+        """Realises ``Move`` commands (set by ``make_robot``)."""
 
     @property
     def max_speed(self) -> float:
@@ -591,14 +649,7 @@ class AckermannDrive(Drive):
             return
         self._sent = (speed, curvature)
         client, body, limits = self.client, self.body.id, self.limits
-        top = limits.steering
-        angles = [
-            h.sign
-            * min(
-                top, max(-top, math.atan2(self.wheelbase * curvature, 1.0 - curvature * h.lateral))
-            )
-            for h in self.hinges
-        ]
+        angles = self.steering_angles(curvature)
         pb.setJointMotorControlArray(
             body,
             [h.index for h in self.hinges],
@@ -619,15 +670,39 @@ class AckermannDrive(Drive):
             physicsClientId=client,
         )
 
+    def steering_angles(self, curvature: float) -> list[float]:
+        """Each hinge's joint angle for an arc of ``curvature`` (1/m), within the limit."""
+        top = self.limits.steering
+        return [
+            h.sign
+            * min(
+                top, max(-top, math.atan2(self.wheelbase * curvature, 1.0 - curvature * h.lateral))
+            )
+            for h in self.hinges
+        ]
+
+    def _manoeuvre(self) -> Manoeuvre:
+        if self.manoeuvre is None:
+            raise ValueError(
+                "a car without a manoeuvre (AckermannDrive.manoeuvre) cannot realise a "
+                "displacement (Move) command"
+            )
+        return self.manoeuvre
+
+    def reach(self, command: Command) -> float:
+        if isinstance(command, Move):
+            return self._manoeuvre().reach(command)
+        return super().reach(command)
+
     def path(self, pose: Pose, command: Command) -> tuple[list[Point], Pose]:
-        if not isinstance(command, Twist):
-            raise ValueError("a car cannot realise a displacement (Move) command")
+        if isinstance(command, Move):
+            return self._manoeuvre().path(pose, command)
         twist = self.realisable(command)
         return arc_points(pose, self.axle, twist.distance, twist.turn)
 
     def run(self, command: Command, watch: World | None, stop_on_touch: bool) -> bool:
-        if not isinstance(command, Twist):
-            raise ValueError("a car cannot realise a displacement (Move) command")
+        if isinstance(command, Move):
+            return self._manoeuvre().run(command, watch, stop_on_touch)
         twist = self.realisable(command)
         curvature = 0.0
         if twist.distance != 0.0:

@@ -22,8 +22,10 @@ import pybullet as pb
 
 from bullet_maze.params import METRES_PER_UNIT, PhysicsParams
 from bullet_maze.robots.body import Body, JointInfo
+from bullet_maze.robots.car_compass import CarCompass
 from bullet_maze.robots.commands import Command
 from bullet_maze.robots.drives import (
+    DEFAULT_BRAKING,
     AckermannDrive,
     DifferentialDrive,
     Drive,
@@ -353,6 +355,7 @@ def _differential(spec: RobotSpec, body: Body) -> DifferentialDrive:
         wheel_speed=spec.max_wheel_speed,
         wheel_torque=spec.wheel_torque,
         turn_rate=2.0 * speed / track if spec.max_turn_rate is None else spec.max_turn_rate,
+        braking=DEFAULT_BRAKING if spec.braking is None else spec.braking,
     )
     return DifferentialDrive(
         body,
@@ -413,7 +416,7 @@ def _ackermann(spec: RobotSpec, body: Body) -> AckermannDrive:
         steering=steering,
         steering_torque=spec.steering_torque,
     )
-    return AckermannDrive(
+    drive = AckermannDrive(
         body,
         math.atan2(forward[1], forward[0]),
         wheels,
@@ -424,6 +427,8 @@ def _ackermann(spec: RobotSpec, body: Body) -> AckermannDrive:
         wheelbase,
         limits,
     )
+    drive.manoeuvre = CarCompass(drive)
+    return drive
 
 
 def _detected(spec: RobotSpec, body: Body) -> RobotSpec:

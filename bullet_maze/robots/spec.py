@@ -20,6 +20,8 @@ track = 0.5708          # optional, metres between left and right wheels (defaul
 max_wheel_speed = 12.0  # rad/s of a driven wheel
 wheel_torque = 60.0     # N m of each driven wheel's motor
 max_turn_rate = 3.0     # optional, rad/s (differential; default: what the wheels allow)
+braking = 9.0           # optional, m/s^2 (differential): the base's deceleration with its wheels
+                        # stopped, which compass steps plan their stops with (default: 5)
 # max_steering = 0.5    # optional, ackermann: radians (default: the hinges' limits)
 # steering_torque = 10  # ackermann: N m of each steering hinge's motor
 
@@ -89,6 +91,7 @@ _SCHEMA: dict[str, tuple[str, ...]] = {
         "max_wheel_speed",
         "wheel_torque",
         "max_turn_rate",
+        "braking",
         "max_steering",
         "steering_torque",
     ),
@@ -107,6 +110,10 @@ PHYSICS_KEYS = ("time_step", "solver_iterations")
 TIME_STEP_BOUNDS = (1.0 / 2000.0, 1.0 / 30.0)
 """Seconds: a robot file's physics step (2 kHz to 30 Hz; coarser steps would let a wheeled
 robot at top speed cross a thin wall's contact margin in one step)."""
+
+MAX_BRAKING = 50.0
+"""m/s^2: the largest ``limits.braking`` (about 5 g; a robot braked by its tyres' friction on
+the floor, coefficient 1, stops at about 10)."""
 
 SOLVER_ITERATION_BOUNDS = (1, 100)
 """A robot file's constraint solver iterations per physics step."""
@@ -153,6 +160,9 @@ class RobotSpec:
     """N m of each driven wheel's motor (pybullet's motor force limit)."""
     max_turn_rate: float | None = None
     """Differential: rad/s; None: what opposite wheel speeds allow (2 v / track)."""
+    braking: float | None = None
+    """Differential: m/s^2, the base's deceleration with its wheels stopped (the compass
+    controller's stops are planned with it); None: ``drives.DEFAULT_BRAKING``."""
     max_steering: float | None = None
     """Ackermann: radians; None: the smaller hinge limit."""
     steering_torque: float = 10.0
@@ -250,8 +260,9 @@ def spec_from_dict(data: dict[str, Any], source: str, base: Path) -> RobotSpec:
         for key in ("max_steering", "steering_torque"):
             if key in limits:
                 raise ValueError(f"{source}: limits.{key}: only an ackermann drive steers")
-    if drive != "differential" and "max_turn_rate" in limits:
-        raise ValueError(f"{source}: limits.max_turn_rate: only a differential drive has one")
+    for key in ("max_turn_rate", "braking"):
+        if drive != "differential" and key in limits:
+            raise ValueError(f"{source}: limits.{key}: only a differential drive has one")
     if drive == "holonomic" and limits:
         raise ValueError(f"{source}: [limits]: a holonomic robot has no motors")
     joints = {
@@ -291,6 +302,7 @@ def spec_from_dict(data: dict[str, Any], source: str, base: Path) -> RobotSpec:
             limits.get("wheel_torque", defaults.wheel_torque), "limits.wheel_torque", positive=True
         ),
         max_turn_rate=read.optional(limits.get("max_turn_rate"), "limits.max_turn_rate"),
+        braking=read.optional(limits.get("braking"), "limits.braking", upper=MAX_BRAKING),
         max_steering=read.optional(
             limits.get("max_steering"), "limits.max_steering", upper=math.pi / 2
         ),

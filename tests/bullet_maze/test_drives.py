@@ -1,6 +1,7 @@
 """Each robot of the zoo drives as itself, in both modes: straight commands move it along its
-heading (its wheels turn), turns change its heading, a car cannot turn in place, walls stop it
-with a collision, and the same seed gives the same rollout bit for bit."""
+heading (its wheels turn), turns change its heading, a car cannot turn in place (its compass
+manoeuvre: test_car_compass.py), walls stop it with a collision, and the same seed gives the
+same rollout bit for bit."""
 
 from __future__ import annotations
 
@@ -169,9 +170,12 @@ def test_the_cars_turn_noise_is_bounded_by_its_curvature(
         obs = new
 
 
-def test_the_car_refuses_compass_actions() -> None:
-    with pytest.raises(ValueError, match=r"cannot turn in place.*actions='native'"):
-        BulletMazeEnv(robot="racecar")
+def test_the_car_takes_compass_actions_by_a_manoeuvre() -> None:
+    # It cannot turn in place; its compass steps are tested in test_car_compass.py.
+    env = BulletMazeEnv(robot="racecar")
+    assert not env.robot.drive.turns_in_place
+    assert env.robot.drive.manoeuvre is not None
+    env.close()
 
 
 @pytest.mark.parametrize("mode", MODES)

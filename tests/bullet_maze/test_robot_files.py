@@ -13,6 +13,7 @@ import pytest
 
 from bullet_maze import BulletMazeEnv, load_robot_spec
 from bullet_maze.robots import MAX_LINKS, resolve_robot
+from bullet_maze.robots.drives import DEFAULT_BRAKING
 
 DATA = Path(pybullet_data.getDataPath())
 
@@ -85,6 +86,14 @@ def test_a_robot_file_is_read(write: Callable[[str, str], Path]) -> None:
         assert env.robot.drive.wheel_radius == pytest.approx(0.1, rel=0.01)  # measured
         assert env.robot.drive.track == pytest.approx(0.5, rel=0.01)
         assert env.observation_space.shape == (3,)
+        assert env.robot.drive.limits.braking == DEFAULT_BRAKING  # the file does not say
+    finally:
+        env.close()
+    path = write("braked.toml", ROBOT_FILE + "braking = 9.5\n")
+    assert load_robot_spec(path).braking == 9.5
+    env = BulletMazeEnv(maze="open", robot=str(path), mode="dynamic")
+    try:
+        assert env.robot.drive.limits.braking == 9.5
     finally:
         env.close()
 
@@ -117,6 +126,16 @@ def test_a_robot_file_is_read(write: Callable[[str, str], Path]) -> None:
         (ROBOT_FILE.replace("10.0", "true"), TypeError, r"max_wheel_speed' must be a number"),
         (ROBOT_FILE.replace("10.0", '"fast"'), TypeError, r"max_wheel_speed' must be a number"),
         (ROBOT_FILE + "max_steering = 0.5\n", ValueError, r"only an ackermann drive steers"),
+        (ROBOT_FILE + "braking = 0\n", ValueError, r"'limits.braking' must be positive"),
+        (ROBOT_FILE + "braking = 51\n", ValueError, r"'limits.braking' must be at most 50"),
+        (ROBOT_FILE + "braking = nan\n", ValueError, r"'limits.braking' must be finite"),
+        (ROBOT_FILE + 'braking = "hard"\n', TypeError, r"'limits.braking' must be a number"),
+        (
+            'urdf = "cart.urdf"\ndrive = "ackermann"\n[wheels]\ndriven = ["left_joint"]\n'
+            'steering = ["right_joint"]\n[limits]\nbraking = 9.0\n',
+            ValueError,
+            r"limits.braking: only a differential drive has one",
+        ),
         (
             ROBOT_FILE.replace('"differential"', '"holonomic"'),
             ValueError,

@@ -36,7 +36,7 @@ TRAIN = {
 SPEC: dict[str, Any] = {
     "transfer": {"name": "tiny", "agents": [], "episodes": 2, "max_episode_steps": 25},
     "conditions": {
-        "robots": ["disc", "racecar"],
+        "robots": ["disc"],
         "modes": ["kinematic", "dynamic"],
         "levels": ["none", "moderate"],
     },
@@ -88,10 +88,9 @@ def test_end_to_end_files_report_and_resume(trained: Path, tmp_path: Path):
     out = tmp_path / "transfer"
     job = Transfer(_spec([str(trained)]), out)
     assert len(job.agents) == 2
-    # per agent: its training condition + disc x 2 modes x 2 levels; the racecar cannot act
+    # per agent: its training condition + disc x 2 modes x 2 levels
     assert len(job.cells) == 2 * 5
-    assert {s.condition.robot for s in job.skipped} == {"racecar"}
-    assert "cannot turn in place" in job.skipped[0].reason
+    assert not job.skipped
     computed = job.run()
     assert len(computed) == 10
     report = job.report()
@@ -99,7 +98,6 @@ def test_end_to_end_files_report_and_resume(trained: Path, tmp_path: Path):
         assert (out / name).is_file(), name
     text = report.path.read_text()
     assert "| grid disc kinematic | open | disc | dynamic | moderate | 2 |" in text
-    assert "racecar__dynamic__none" in text
     train_rows = [r for r in report.cells if r.level == "train"]
     assert len(train_rows) == 2
     assert all(r.gap == 0.0 for r in train_rows)
@@ -116,6 +114,35 @@ def test_end_to_end_files_report_and_resume(trained: Path, tmp_path: Path):
     recomputed = Transfer(_spec([str(trained)]), out).run()
     assert len(recomputed) == 2
     assert _files(out) == before  # the same numbers, bit for bit
+
+
+STATIC_URDF = """<?xml version="1.0"?>
+<robot name="static">
+  <link name="base">
+    <inertial><mass value="0"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+    </inertial>
+    <collision><geometry><cylinder radius="0.5" length="0.2"/></geometry></collision>
+  </link>
+</robot>
+"""
+
+
+def test_a_condition_the_agent_cannot_act_in_is_listed_with_its_reason(
+    trained: Path, tmp_path: Path
+):
+    # A base of mass 0 cannot move in dynamic mode: that condition is skipped, with the reason.
+    (tmp_path / "static.urdf").write_text(STATIC_URDF)
+    urdf = tmp_path / "static.toml"
+    urdf.write_text('urdf = "static.urdf"\ndrive = "holonomic"\n')
+    data = copy.deepcopy(SPEC)
+    data["transfer"]["agents"] = [str(trained)]
+    data["conditions"]["robots"] = [str(urdf)]
+    data["conditions"]["levels"] = ["none"]
+    job = Transfer(parse_spec(data, "tiny_transfer.toml"), tmp_path / "transfer")
+    # per agent: its training condition + the static robot in kinematic mode
+    assert len(job.cells) == 2 * 2
+    assert {(s.condition.robot, s.condition.mode) for s in job.skipped} == {(str(urdf), "dynamic")}
+    assert "mass 0" in job.skipped[0].reason
 
 
 def test_changed_inputs_are_refused_by_name(trained: Path, tmp_path: Path):

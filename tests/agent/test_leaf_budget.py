@@ -1,0 +1,104 @@
+"""TreeConfig.leaves_per_terminal: a leaf budget that grows with the terminal transitions seen."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from agent import TreeAgent, TreeConfig, preset
+from agent.fast_loop import ineligible_reason
+from agent.partition_tree import GatedPartitionTree, PartitionTree
+
+FINE = TreeConfig(split_min_samples=20, split_min_variance=0.0, max_epoch_steps=10)
+
+
+def trained(
+    make_corridor: Callable[..., Any], config: TreeConfig, episodes: int, **env: Any
+) -> tuple[TreeAgent, list[Any]]:
+    corridor = make_corridor(**env)
+    agent = TreeAgent(corridor.observation_space, corridor.action_space, "epsilon-greedy", 0, config)
+    history = agent.learn(corridor, episodes, reset_seed=0)
+    return agent, history
+
+
+def test_the_default_keeps_the_papers_tree() -> None:
+    agent = TreeAgent(*_spaces(), "epsilon-greedy", 0, TreeConfig())
+    assert type(agent.partition) is PartitionTree
+    assert TreeConfig().leaves_per_terminal == 0
+
+
+@pytest.mark.parametrize("bad", [-1, 1.5, True, "8"])
+def test_a_bad_budget_is_refused_by_name(bad: Any) -> None:
+    with pytest.raises((ValueError, TypeError), match="leaves_per_terminal"):
+        TreeConfig(leaves_per_terminal=bad)
+
+
+def test_no_split_before_the_first_terminal_transition(make_corridor: Callable[..., Any]) -> None:
+    # the goal is out of reach in 200 steps: no episode terminates
+    config = dataclasses.replace(FINE, leaves_per_terminal=8)
+    agent, history = trained(make_corridor, config, 5, goal=(0.95, 0.95), goal_radius=0.01)
+    assert not any(s.success for s in history)
+    assert agent.n_leaves == 1
+    ungated, _ = trained(make_corridor, FINE, 5, goal=(0.95, 0.95), goal_radius=0.01)
+    assert ungated.n_leaves > 1  # the same run without the gate splits
+
+
+def test_the_budget_grows_by_its_step_per_terminal(make_corridor: Callable[..., Any]) -> None:
+    config = dataclasses.replace(FINE, leaves_per_terminal=2)
+    agent, history = trained(make_corridor, config, 40)
+    partition = agent.partition
+    assert isinstance(partition, GatedPartitionTree)
+    goals = sum(s.success for s in history)
+    assert partition.terminals == goals > 0
+    assert partition.leaf_budget == min(1 + 2 * goals, config.max_leaves)
+    assert 1 < agent.n_leaves <= partition.leaf_budget
+
+
+def test_the_presplit_is_the_budgets_base() -> None:
+    config = TreeConfig(presplit_each_dimension=True, leaves_per_terminal=3)
+    agent = TreeAgent(*_spaces(), "epsilon-greedy", 0, config)
+    assert isinstance(agent.partition, GatedPartitionTree)
+    assert agent.partition.initial_leaves == agent.n_leaves == 4
+    assert agent.partition.leaf_budget == 4
+
+
+def test_the_count_is_saved_and_learning_continues_the_same(
+    make_corridor: Callable[..., Any], tmp_path: Path
+) -> None:
+    config = dataclasses.replace(FINE, leaves_per_terminal=2)
+    agent, _ = trained(make_corridor, config, 20)
+    loaded = TreeAgent.load(agent.save(tmp_path / "gated"))
+    assert isinstance(loaded.partition, GatedPartitionTree)
+    assert loaded.partition.terminals == agent.partition.terminals  # type: ignore[attr-defined]
+    env_a, env_b = make_corridor(), make_corridor()
+    a = [s.steps for s in agent.learn(env_a, 10, reset_seed=5)]
+    b = [s.steps for s in loaded.learn(env_b, 10, reset_seed=5)]
+    assert a == b and agent.n_leaves == loaded.n_leaves
+
+
+def test_the_fast_loop_leaves_a_gated_tree_to_the_reference() -> None:
+    import bullet_maze  # noqa: F401 (registers the env)
+    import gymnasium as gym
+
+    env = gym.make("BulletMaze-v0", mode="kinematic")
+    config = TreeConfig(leaves_per_terminal=4)
+    agent = TreeAgent(env.observation_space, env.action_space, "epsilon-greedy", 0, config)
+    assert ineligible_reason(agent, env) is not None
+    env.close()
+
+
+def test_the_general_preset_with_a_budget_builds() -> None:
+    config = dataclasses.replace(preset("general").config, leaves_per_terminal=16)
+    agent = TreeAgent(*_spaces(), "adaptive+tabu", 0, config)
+    assert isinstance(agent.partition, GatedPartitionTree)
+
+
+def _spaces() -> tuple[Any, Any]:
+    from gymnasium import spaces
+
+    return spaces.Box(0.0, 1.0, shape=(2,), dtype=np.float64), spaces.Discrete(4)
