@@ -10,6 +10,12 @@ forests of N cylinders in a fixed 1,000 x 1,000 arena (denser with N). Every rou
 runs every case, alternately forwards and backwards; rates are medians over the rounds and each
 ratio (to the N = 10 case of its series) the median of the ratios within the rounds.
 
+Each case also gets the share of the N = 10 speed that the per-cell certificates allow it, from
+the same round (``certificate_bound``, ``step_bound``): the N = 10 step with its queries replaced
+by the case's, at the N = 10 cost per query; plus the pieces each query reports, at the N = 10
+cost per piece; and both at their whole cost to the N = 10 step (pybullet and the Python that
+uses the answers, ``step_fit``). A verdict per series at the largest N compares with the last.
+
 Each measurement runs in a fresh process. ``--compare-with DIR`` measures, in the same rounds, the
 package found in DIR, an export of an older tree (``git archive COMMIT | tar -x -C DIR``), for a
 before/after.
