@@ -40,7 +40,12 @@ EV_PY_TAIL = 8
 EV_CALLBACK_ERROR = 9
 
 SWEEP_CALLBACK = ctypes.CFUNCTYPE(
-    ctypes.c_int64, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_int64
+    ctypes.c_int64,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_double,
+    ctypes.c_int64,
 )
 """The driver's sweep, called from the kernel without returning (about 0.3 us a call against
 several for a return): ``sweep(x0, y0, x1, y1, known)`` answers ``World.sweep_collides(x0, y0,
@@ -48,8 +53,9 @@ x1, y1)`` and writes the safe ball; returns collided + 2 * success (the goal tes
 raised (the driver re-raises the exception after the kernel returns EV_CALLBACK_ERROR).
 ``known`` = 1: the kernel's :func:`certified_free` found the move not proved free on a cell it
 knows (the world's own ``certified_free`` answers False too, with no side effect), so the
-driver may go straight to the queries; 0: undecided here (an unseen cell, a margin, or a free
-move whose goal test was uncertain)."""
+driver may go straight to the queries; 2: the safe ball does not hold the move and the cell is
+unseen here (the driver goes straight to the cell's bounds); 0: undecided here (a margin, a
+cell outside the table, or a free move whose goal test was uncertain)."""
 
 # Phases (st[I_PHASE]).
 PH_START = 0
@@ -1175,8 +1181,10 @@ def end_epoch(
 
 @njit(cache=True, inline="always")
 def certified_free(x0, y0, x1, y1, fs, cells, bounds_c, bounds_r, pieces):
-    """``World.certified_free``: 1 proved free, 0 not proved, -1 undecided here (an unseen
-    cell, a cell outside the table, a comparison within the margin)."""
+    """``World.certified_free``: 1 proved free, 0 not proved, 2 the safe ball does not hold the
+    move and (x0, y0)'s cell is unseen here (the world's own ``certified_free`` goes on to the
+    cell's bounds), -1 undecided here (a cell outside the table, a comparison within the
+    margin)."""
     a = hypot_le(x1 - fs[F_SX], y1 - fs[F_SY], fs[F_SR])
     if a < 0:
         return -1
@@ -1192,7 +1200,7 @@ def certified_free(x0, y0, x1, y1, fs, cells, bounds_c, bounds_r, pieces):
         return -1
     index = cells[cx, cy]
     if index == CELL_UNSEEN:
-        return -1
+        return 2
     if index == CELL_USELESS:
         return 0
     # _CellBounds.clear
@@ -1225,7 +1233,8 @@ def env_step(action, st, fs, moves, noise, cells, bounds_c, bounds_r, pieces):
     free and the goal test certain), 2 or 3 when only Python can decide the collision or the
     goal (the move is in ``fs[F_SW_X0:F_SW_Y1 + 1]``: the driver's sweep answers
     ``World.sweep_collides`` on it, as ``step`` does, and :func:`finish_step` completes the
-    step; 3: :func:`certified_free` found it not proved free on a known cell), 0 when
+    step; 3: :func:`certified_free` found it not proved free on a known cell, 4: outside the
+    safe ball on an unseen cell; the sweep's ``known`` is the code - 2), 0 when
     ``env.step`` itself must take it (a new noise block, the checker's first steps). Only 1
     changes state.
     """
@@ -1249,7 +1258,7 @@ def env_step(action, st, fs, moves, noise, cells, bounds_c, bounds_r, pieces):
         fs[F_SW_Y0] = y0
         fs[F_SW_X1] = x1
         fs[F_SW_Y1] = y1
-        return 3 if free == 0 else 2
+        return 3 if free == 0 else (4 if free == 2 else 2)
     st[I_COLLIDED] = 0
     st[I_SUCCESS] = success
     fs[F_OX] = x1
@@ -1263,8 +1272,9 @@ def call_sweep(typingctx, address, x0, y0, x1, y1, known):
     """Call the SWEEP_CALLBACK at ``address`` (an int64) with the move and ``known``: the
     driver stores its callback's address in ``st[I_SWEEP]`` instead of passing the ctypes
     object, whose unboxing cost several us at every call of :func:`run_pooled`."""
-    signature = types.int64(types.int64, types.float64, types.float64, types.float64,
-                            types.float64, types.int64)
+    signature = types.int64(
+        types.int64, types.float64, types.float64, types.float64, types.float64, types.int64
+    )
 
     def codegen(context, builder, sig, args):
         double, int64 = ir.DoubleType(), ir.IntType(64)

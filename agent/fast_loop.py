@@ -40,6 +40,7 @@ from __future__ import annotations
 import ast
 import ctypes
 import dataclasses
+import gc
 import hashlib
 import inspect
 import itertools
@@ -49,7 +50,7 @@ import sys
 import textwrap
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 from gymnasium.wrappers import OrderEnforcing, PassiveEnvChecker, TimeLimit
@@ -673,7 +674,9 @@ class FastRunner:
         sets this to 0.0 (``bench/bench_agent.py``); None: not measured."""
         self._pending = False
         self._error: BaseException | None = None
-        self._queries: Callable[[float, float, float, float], bool] | None = None
+        self._queries: Callable[[float, float, float, float, int], bool] | None = None
+        self._queries_made: tuple[Any, Callable[[float, float, float, float, int], bool]] | None
+        self._queries_made = None
         self._sweep_callback = kernel.SWEEP_CALLBACK(self._sweep_function())
         self.sums_events = [0, 0, 0]
         """Rings the kernel filled (exact sums asked of NumPy), for the tests: a leaf's own
@@ -706,6 +709,13 @@ class FastRunner:
         st[k.I_PHASE] = k.PH_START
         run = k.run_pooled
         self._pending = True
+        # No cyclic collection during the episode: the kernel and the env's sweeps make no
+        # reference cycles (their objects die by reference counting), and a collection here,
+        # set off by allocations elsewhere, would traverse the process's heap for nothing (a
+        # full one is about 50 ms). The collector is on again when the episode ends or raises.
+        collecting = gc.isenabled()
+        if collecting:
+            gc.disable()
         try:
             while True:
                 event = run(*self._args())
@@ -738,6 +748,8 @@ class FastRunner:
             self.sync()
             raise
         finally:
+            if collecting:
+                gc.enable()
             self._commit_env()
         if not self.lazy:
             self.sync()
@@ -808,9 +820,10 @@ class FastRunner:
         cross the callback: it is kept and raised once the kernel has returned).
 
         ``known`` = 1 (the kernel's ``certified_free`` found the move not proved free on a cell
-        it holds, so the world's own ``certified_free`` returns False with no side effect):
-        :func:`_sweep_queries`, ``sweep_collides`` after that first line, when the world's
-        methods are its class's (see :meth:`_queries_for`)."""
+        it holds, so the world's own ``certified_free`` returns False with no side effect) or 2
+        (the safe ball does not hold the move, the cell is unseen in the kernel's table):
+        :func:`_sweep_queries`, ``sweep_collides`` from the line the kernel reached, when the
+        world's methods are its class's (see :meth:`_queries_for`)."""
         k = self.k
         sx, sy, sr = k.F_SX, k.F_SY, k.F_SR
         hypot, clock = math.hypot, time.process_time
@@ -820,16 +833,16 @@ class FastRunner:
         def sweep(x0: float, y0: float, x1: float, y1: float, known: int) -> int:
             try:
                 world = runner.world
-                queries = runner._queries if known else None
+                mirrored = runner._queries if known else None
                 if runner.env_seconds is None:
-                    if queries is not None:
-                        collided = queries(x0, y0, x1, y1)
+                    if mirrored is not None:
+                        collided = mirrored(x0, y0, x1, y1, known)
                     else:
                         collided = world.sweep_collides(x0, y0, x1, y1)
                 else:
                     start = clock()
-                    if queries is not None:
-                        collided = queries(x0, y0, x1, y1)
+                    if mirrored is not None:
+                        collided = mirrored(x0, y0, x1, y1, known)
                     else:
                         collided = world.sweep_collides(x0, y0, x1, y1)
                     runner.env_seconds += clock() - start
@@ -854,12 +867,16 @@ class FastRunner:
 
         return sweep
 
-    def _queries_for(self, world: Any) -> Callable[[float, float, float, float], bool] | None:
-        """:func:`_sweep_queries` for ``world``, or None when one of the methods it mirrors or
-        calls is replaced on the instance (then ``world.sweep_collides`` itself is called)."""
+    def _queries_for(self, world: Any) -> Callable[[float, float, float, float, int], bool] | None:
+        """:func:`_sweep_queries` for ``world`` (made once per world), or None when one of the
+        methods it mirrors or calls is replaced on the instance (then ``world.sweep_collides``
+        itself is called)."""
         if any(name in vars(world) for name in _MIRRORED_WORLD_METHODS):
             return None
-        return _sweep_queries(world)
+        made = self._queries_made
+        if made is None or made[0] is not world:
+            made = self._queries_made = (world, _sweep_queries(world))
+        return made[1]
 
     def _record(self) -> None:
         """The tail of ``_end_epoch`` in Python (when the kernel does not run the split test):
@@ -1596,20 +1613,23 @@ _MIRRORED_WORLD_METHODS = (
     "_closest",
     "place_probe",
     "clear_within",
+    "_cell_bounds",
 )
 """The world's methods :func:`_sweep_queries` mirrors or calls: replaced on the instance (a test,
 a wrapper), the world's own ``sweep_collides`` runs instead."""
 
 
-def _sweep_queries(world: Any) -> Callable[[float, float, float, float], bool]:
-    """``world.sweep_collides(x0, y0, x1, y1)`` after its first line, for a move its
-    ``certified_free`` does not prove free (the kernel knows that, with no side effect to make):
-    the same statements in the same order (fingerprints ``World.sweep_collides``,
-    ``World._closest``, ``World.place_probe``), so the same answer, safe ball and pybullet
-    queries, without the Python calls around them. A world of one solid body gets
-    ``_closest``'s lines inline (the footprint's shape placed by the query); any other calls
-    ``world._closest``."""
+def _sweep_queries(world: Any) -> Callable[[float, float, float, float, int], bool]:
+    """``world.sweep_collides(x0, y0, x1, y1)`` from where the kernel stopped: ``known`` = 1,
+    after its first line, for a move its ``certified_free`` does not prove free (the kernel
+    knows that, with no side effect to make); ``known`` = 2, ``certified_free`` from the cell
+    lookup on (its safe ball does not hold the move). The same statements in the same order
+    (fingerprints ``World.sweep_collides``, ``World.certified_free``, ``World._closest``,
+    ``World.place_probe``), so the same answer, safe ball, cell cache and pybullet queries,
+    without the Python calls around them. A world of one solid body gets ``_closest``'s lines
+    inline (the footprint's shape placed by the query); any other calls ``world._closest``."""
     module = sys.modules[type(world).__module__]
+    cell_size, unseen = module.CELL, module._UNSEEN
     pb = module.pb
     metres = module.METRES_PER_UNIT
     tolerance = module.CONTACT_TOLERANCE
@@ -1639,7 +1659,15 @@ def _sweep_queries(world: Any) -> Callable[[float, float, float, float], bool]:
     else:
         closest = world._closest
 
-    def queries(x0: float, y0: float, x1: float, y1: float) -> bool:
+    def queries(x0: float, y0: float, x1: float, y1: float, known: int) -> bool:
+        if known == 2:  # certified_free's last lines
+            cell = (int(x0 // cell_size), int(y0 // cell_size))
+            cells = world._cells
+            bounds = cells.get(cell, unseen)
+            if bounds is unseen:
+                bounds = cells[cell] = world._cell_bounds(cell)
+            if bounds is not None and bounds.clear(x0, y0, x1, y1):
+                return False
         length = hypot(x1 - x0, y1 - y0)
         if length == 0.0:
             return not world.clear_within(x0, y0, 0.0)
@@ -1668,9 +1696,9 @@ def _sweep_queries(world: Any) -> Callable[[float, float, float, float], bool]:
     return queries
 
 
-def _flat(array: np.ndarray, code: str) -> memoryview:
+def _flat(array: np.ndarray, code: Literal["d", "q"]) -> memoryview[Any]:
     """A flat memoryview of a C-contiguous array's own memory (``cast`` raises otherwise)."""
-    return memoryview(array).cast("B").cast(code)
+    return array.data.cast("B").cast(code)
 
 
 def _address(callback: Any) -> int:
