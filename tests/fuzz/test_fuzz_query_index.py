@@ -70,13 +70,7 @@ def test_the_index_answers_as_the_solid_bodies_on_random_layouts(seed: int) -> N
             x, y = float(x), float(y)
             reach = float(rng.choice([0.0, SAFE_REACH, rng.uniform(0.0, SAFE_REACH)]))
             indexed = world._closest(x, y, reach)
-            world.place_probe(x, y)
-            far = (reach + CONTACT_TOLERANCE) * METRES_PER_UNIT
-            direct = [
-                point
-                for body in world.solid_ids
-                for point in pb.getClosestPoints(world.probe_id, body, far, physicsClientId=client)
-            ]
+            direct = _probe_answers(world, client, x, y, reach)
             assert sorted((p[8], p[7], p[6]) for p in indexed) == sorted(
                 (p[8], p[7], p[6]) for p in direct
             ), (seed, x, y, reach)
