@@ -14,7 +14,11 @@ Each case also gets the share of the N = 10 speed that the per-cell certificates
 the same round (``certificate_bound``, ``step_bound``): the N = 10 step with its queries replaced
 by the case's, at the N = 10 cost per query; plus the pieces each query reports, at the N = 10
 cost per piece; and both at their whole cost to the N = 10 step (pybullet and the Python that
-uses the answers, ``step_fit``). A verdict per series at the largest N compares with the last.
+uses the answers, ``step_fit``); and those with each query's pybullet time at what that very
+query costs replayed alone after the walk (``replay_bound``: a piece's cost depends on its shape,
+not only on the count). A verdict per series at the largest N compares with the last, within
+``NOISE``. The walk runs twice per round on fresh worlds: plain for the steps/s, then timed for
+the counts and fits (the timers' own cost, ``timer_cost``, is taken off the fitted cost per query).
 
 Each measurement runs in a fresh process. ``--compare-with DIR`` measures, in the same rounds, the
 package found in DIR, an export of an older tree (``git archive COMMIT | tar -x -C DIR``), for a
@@ -88,37 +92,36 @@ def cases(counts: tuple[int, ...]) -> list[Case]:
 
 
 def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
-    """One round of one case."""
+    """One round of one case: the kinematic walk twice, each on a fresh world (its cells unseen),
+    first as it is (the steps/s reported) and then with its queries and steps timed (the counts,
+    fits and bounds; the timers cost the step time of their own)."""
     start = time.perf_counter()
     env = gym.make("BulletMaze-v0", maze=case.spec, render_mode="rgb_array")
     env.reset(seed=0)
     build = time.perf_counter() - start
-    unwrapped = env.unwrapped
-    layout, world = unwrapped.layout, unwrapped.world
-    # Per query: its CPU time t and the pieces it reported p; sums for the fit t = a + b p.
-    sums = {"n": 0.0, "t": 0.0, "p": 0.0, "pp": 0.0, "pt": 0.0}
-    closest = world._closest
-
-    found_by_query: list[int] = []
-    asked: list[tuple[float, float, float]] = []
-
-    def counted(x: float, y: float, reach: float) -> list[tuple]:
-        asked.append((x, y, reach))
-        begin = time.process_time()
-        points = closest(x, y, reach)
-        spent, found = time.process_time() - begin, len(points)
-        sums["n"] += 1
-        sums["t"] += spent
-        sums["p"] += found
-        sums["pp"] += found * found
-        sums["pt"] += found * spent
-        found_by_query.append(found)
-        return points
-
-    world._closest = counted
+    layout = env.unwrapped.layout
     rng = np.random.default_rng(0)
     starts = free_points(layout, rng, 1 + steps // 1000)
     actions = rng.integers(0, 4, steps).tolist()
+    begin = time.process_time()
+    for i, action in enumerate(actions):
+        if i % 1000 == 0:
+            env.reset(options={"start": starts[i // 1000]})
+        _, _, terminated, truncated, _ = env.step(action)
+        if terminated or truncated:
+            env.reset()
+    kinematic = steps / (time.process_time() - begin)
+    env.close()
+    env = gym.make("BulletMaze-v0", maze=case.spec, render_mode="rgb_array")
+    env.reset(seed=0)
+    world = env.unwrapped.world
+    # Per query: its CPU time t and the pieces it reported p; sums for the fit t = a + b p.
+    sums = {"n": 0.0, "t": 0.0, "p": 0.0, "pp": 0.0, "pt": 0.0}
+    closest = world._closest
+    found_by_query: list[int] = []
+    asked: list[tuple[float, float, float]] = []
+    world._closest = timed(closest, sums, found_by_query, asked)
+    wrapper_us = timer_cost()
     # Per step: the clock after it and the queries made so far (for ``step_fit``; about 0.1 us).
     ends, made, resets = [0] * steps, [0] * steps, [False] * steps
     clock = time.perf_counter_ns
@@ -134,7 +137,7 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
             resets[i] = True
         ends[i] = clock()
         made[i] = len(found_by_query)
-    kinematic = steps / (time.process_time() - begin)
+    timed_kinematic = steps / (time.process_time() - begin)
     base_us, query_step_us, piece_step_us = step_fit(first, ends, made, resets, found_by_query)
     world._closest = closest
     replay_us, replay_base_us, replay_piece_us = replayed(closest, asked)
@@ -161,6 +164,8 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
         "arena": layout.arena[0],
         "build_ms": build * 1e3,
         "kinematic": kinematic,
+        "timed_kinematic": timed_kinematic,
+        "timer_us": wrapper_us,
         "queries": sums["n"] / steps,
         "query_us": mean_t * 1e6,
         "pieces": mean_p,
@@ -174,6 +179,55 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
         "dynamic": dynamic,
         "render_ms": render * 1e3,
     }
+
+
+def timed(
+    closest: Callable[[float, float, float], list[tuple]],
+    sums: dict[str, float],
+    found_by_query: list[int],
+    asked: list[tuple[float, float, float]],
+) -> Callable[[float, float, float], list[tuple]]:
+    """``closest`` that records each query's place and reach, its time and the pieces it reports
+    (``sums`` for the fit of the time against the pieces)."""
+    clock = (
+        time.process_time
+    )  # CPU time: a pause of the machine in a query would count in wall time
+
+    def counted(x: float, y: float, reach: float) -> list[tuple]:
+        asked.append((x, y, reach))
+        begin = clock()
+        points = closest(x, y, reach)
+        spent, found = clock() - begin, len(points)
+        sums["n"] += 1
+        sums["t"] += spent
+        sums["p"] += found
+        sums["pp"] += found * found
+        sums["pt"] += found * spent
+        found_by_query.append(found)
+        return points
+
+    return counted
+
+
+def timer_cost(calls: int = 20_000) -> float:
+    """What ``timed`` adds to a query (microseconds, best of 3): a step of the timed walk pays it
+    per query, the plain walk does not, so ``step_bound`` takes it off the fitted cost per query."""
+    answer: list[tuple] = [()]
+
+    def bare(x: float, y: float, reach: float) -> list[tuple]:
+        return answer
+
+    wrapped = timed(bare, {"n": 0.0, "t": 0.0, "p": 0.0, "pp": 0.0, "pt": 0.0}, [], [])
+    best = math.inf
+    for _ in range(3):
+        begin = time.perf_counter_ns()
+        for _ in range(calls):
+            bare(1.0, 2.0, 3.0)
+        middle = time.perf_counter_ns()
+        for _ in range(calls):
+            wrapped(1.0, 2.0, 3.0)
+        best = min(best, (time.perf_counter_ns() - 2 * middle + begin) / calls / 1e3)
+    return best
 
 
 def step_fit(
@@ -256,7 +310,9 @@ def bench_solids(
             reference = results[first, name]
             med = {key: statistics.median(row[key] for row in rows) for key in rows[0]}
             pairs = list(zip(rows, reference, strict=True))
-            kin = statistics.median(a["kinematic"] / b["kinematic"] for a, b in pairs)
+            ratios = [a["kinematic"] / b["kinematic"] for a, b in pairs]
+            kin = statistics.median(ratios)
+            low, high = np.percentile(ratios, [25, 75]) if len(ratios) > 1 else (kin, kin)
             dyn = statistics.median(a["dynamic"] / b["dynamic"] for a, b in pairs)
             by_count = statistics.median(certificate_bound(a, b, pieces=False) for a, b in pairs)
             by_pieces = statistics.median(certificate_bound(a, b, pieces=True) for a, b in pairs)
@@ -272,7 +328,8 @@ def bench_solids(
             )
             if case.count == max(counts) and name == "this tree":
                 verdicts.append(
-                    f"{case.series}, N = {case.count}: kinematic {kin:.2f} of the N = 10 speed; "
+                    f"{case.series}, N = {case.count}: kinematic {kin:.2f} of the N = 10 speed "
+                    f"(rounds' quartiles {low:.2f}-{high:.2f}); "
                     f"the certificates' query count allows {by_count:.2f}, with the pieces each "
                     f"query reports {by_pieces:.2f}, with the whole cost of handling them in the "
                     f"step {by_steps:.2f}, with the queries at their own replayed cost "
@@ -324,7 +381,7 @@ def replay_bound(row: dict[str, float], reference: dict[str, float]) -> float:
     very queries the certificates asked. The same correction is zero for the reference (the fit's
     mean residual)."""
     step = 1e6 / reference["kinematic"]
-    a, b = reference["step_query_us"], reference["step_piece_us"]
+    a, b = reference["step_query_us"] - reference["timer_us"], reference["step_piece_us"]
     extra = a * (row["queries"] - reference["queries"]) + b * (
         row["queries"] * row["pieces"] - reference["queries"] * reference["pieces"]
     )
@@ -335,9 +392,10 @@ def replay_bound(row: dict[str, float], reference: dict[str, float]) -> float:
 
 def step_bound(row: dict[str, float], reference: dict[str, float]) -> float:
     """As ``certificate_bound`` with pieces, at what a query and a piece cost the whole N = 10 step
-    (``step_fit`` of the reference: pybullet and the Python that uses the answer)."""
+    (``step_fit`` of the reference's timed walk: pybullet and the Python that uses the answer;
+    less the timer's own cost per query, ``timer_cost``, which the plain walk does not pay)."""
     step = 1e6 / reference["kinematic"]
-    a, b = reference["step_query_us"], reference["step_piece_us"]
+    a, b = reference["step_query_us"] - reference["timer_us"], reference["step_piece_us"]
     extra = a * (row["queries"] - reference["queries"]) + b * (
         row["queries"] * row["pieces"] - reference["queries"] * reference["pieces"]
     )
