@@ -18,7 +18,8 @@ uses the answers, ``step_fit``); and those with each query's pybullet time at wh
 query costs replayed alone after the walk (``replay_bound``: a piece's cost depends on its shape,
 not only on the count). A verdict per series at the largest N compares with the last, within
 ``NOISE``. The walk runs twice per round on fresh worlds: plain for the steps/s, then timed for
-the counts and fits (the timers' own cost, ``timer_cost``, is taken off the fitted cost per query).
+the counts and fits (the timers' own cost, ``timer_cost``, is taken off the fitted cost per query);
+each several times, the fastest counting (``measure`` says why).
 
 Each measurement runs in a fresh process. ``--compare-with DIR`` measures, in the same rounds, the
 package found in DIR, an export of an older tree (``git archive COMMIT | tar -x -C DIR``), for a
@@ -91,10 +92,21 @@ def cases(counts: tuple[int, ...]) -> list[Case]:
     return found
 
 
+PLAIN_WALKS = 3
+"""Plain walks per case and round, each on a fresh world; the fastest counts (see ``measure``)."""
+
+TIMED_WALKS = 2
+"""Timed walks per case and round, each on a fresh world; the fastest gives the counts and fits."""
+
+
 def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
-    """One round of one case: the kinematic walk twice, each on a fresh world (its cells unseen),
-    first as it is (the steps/s reported) and then with its queries and steps timed (the counts,
-    fits and bounds; the timers cost the step time of their own)."""
+    """One round of one case: the kinematic walk on fresh worlds (each with its cells unseen),
+    ``PLAIN_WALKS`` times as it is (the fastest is the steps/s reported) and ``TIMED_WALKS`` times
+    with its queries and steps timed (the fastest gives the counts, fits and replay; the timers
+    cost the step time of their own). The fastest, because on this shared machine the same walk
+    runs either at its speed or, while another process shares the core and its caches, about 1.5
+    times slower (2026-12-02: 5.2-5.7 against 7.0-8.5 us a step, nothing else changed): a
+    contended walk only ever reads slower."""
     start = time.perf_counter()
     env = gym.make("BulletMaze-v0", maze=case.spec, render_mode="rgb_array")
     env.reset(seed=0)
@@ -103,6 +115,49 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
     rng = np.random.default_rng(0)
     starts = free_points(layout, rng, 1 + steps // 1000)
     actions = rng.integers(0, 4, steps).tolist()
+    kinematic = 0.0
+    for walk in range(PLAIN_WALKS):
+        if walk:
+            env = gym.make("BulletMaze-v0", maze=case.spec, render_mode="rgb_array")
+            env.reset(seed=0)
+        kinematic = max(kinematic, plain_walk(env, starts, actions))
+        env.close()
+    best: dict[str, float] = {}
+    for _ in range(TIMED_WALKS):
+        env = gym.make("BulletMaze-v0", maze=case.spec, render_mode="rgb_array")
+        env.reset(seed=0)
+        row = timed_walk(env, starts, actions)
+        if row["timed_kinematic"] > best.get("timed_kinematic", 0.0):
+            best = row
+        if _ < TIMED_WALKS - 1:
+            env.close()
+    render_begin = time.perf_counter()
+    for _ in range(3):
+        env.render()
+    render = (time.perf_counter() - render_begin) / 3
+    env.close()
+    dynamic_env = gym.make("BulletMaze-v0", maze=case.spec, mode="dynamic")
+    dynamic_env.reset(seed=0)
+    begin = time.process_time()
+    for action in actions[:dynamic_steps]:
+        _, _, terminated, truncated, _ = dynamic_env.step(action)
+        if terminated or truncated:
+            dynamic_env.reset()
+    dynamic = dynamic_steps / (time.process_time() - begin)
+    dynamic_env.close()
+    return {
+        "solids": layout.solid_count,
+        "arena": layout.arena[0],
+        "build_ms": build * 1e3,
+        "kinematic": kinematic,
+        **best,
+        "dynamic": dynamic,
+        "render_ms": render * 1e3,
+    }
+
+
+def plain_walk(env: gym.Env, starts: list, actions: list[int]) -> float:
+    """The walk's kinematic steps per CPU second: a reset to the next start every 1,000 steps."""
     begin = time.process_time()
     for i, action in enumerate(actions):
         if i % 1000 == 0:
@@ -110,10 +165,14 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
         _, _, terminated, truncated, _ = env.step(action)
         if terminated or truncated:
             env.reset()
-    kinematic = steps / (time.process_time() - begin)
-    env.close()
-    env = gym.make("BulletMaze-v0", maze=case.spec, render_mode="rgb_array")
-    env.reset(seed=0)
+    return len(actions) / (time.process_time() - begin)
+
+
+def timed_walk(env: gym.Env, starts: list, actions: list[int]) -> dict[str, float]:
+    """The walk with its queries and steps timed: its rate, the queries per step and the pieces
+    per query, a query's CPU time and its fit against the pieces, the step fit (``step_fit``),
+    the timers' own cost (``timer_cost``) and the replay (``replayed``)."""
+    steps = len(actions)
     world = env.unwrapped.world
     # Per query: its CPU time t and the pieces it reported p; sums for the fit t = a + b p.
     sums = {"n": 0.0, "t": 0.0, "p": 0.0, "pp": 0.0, "pt": 0.0}
@@ -141,29 +200,11 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
     base_us, query_step_us, piece_step_us = step_fit(first, ends, made, resets, found_by_query)
     world._closest = closest
     replay_us, replay_base_us, replay_piece_us = replayed(closest, asked)
-    render_begin = time.perf_counter()
-    for _ in range(3):
-        env.render()
-    render = (time.perf_counter() - render_begin) / 3
-    env.close()
-    dynamic_env = gym.make("BulletMaze-v0", maze=case.spec, mode="dynamic")
-    dynamic_env.reset(seed=0)
-    begin = time.process_time()
-    for action in actions[:dynamic_steps]:
-        _, _, terminated, truncated, _ = dynamic_env.step(action)
-        if terminated or truncated:
-            dynamic_env.reset()
-    dynamic = dynamic_steps / (time.process_time() - begin)
-    dynamic_env.close()
     n = max(sums["n"], 1.0)
     mean_p, mean_t = sums["p"] / n, sums["t"] / n
     spread = sums["pp"] / n - mean_p * mean_p
     per_piece = (sums["pt"] / n - mean_p * mean_t) / spread if spread > 1e-12 else 0.0
     return {
-        "solids": layout.solid_count,
-        "arena": layout.arena[0],
-        "build_ms": build * 1e3,
-        "kinematic": kinematic,
         "timed_kinematic": timed_kinematic,
         "timer_us": wrapper_us,
         "queries": sums["n"] / steps,
@@ -176,8 +217,6 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
         "replay_us": replay_us,
         "replay_base_us": replay_base_us,
         "replay_piece_us": replay_piece_us,
-        "dynamic": dynamic,
-        "render_ms": render * 1e3,
     }
 
 
