@@ -537,7 +537,8 @@ def main() -> None:
         kinematic_speed(steps * 10, rounds)
     if args.only in (None, "lidar"):
         added = lidar_cost(steps, rounds)
-    targets(rates, added)
+    if rates or added:
+        targets(rates, added)
     print(f"\nload average at end: {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
 
 
