@@ -221,7 +221,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
       * `bullet_maze.PhysicsParams` (dynamic mode): `time_step`, `substeps`,
         `solver_iterations`, `revert_on_collision`, `max_turn_substeps`,
         `max_drive_substeps` (a robot file's `[physics]` may set its own `time_step` and
-        `solver_iterations`, per action set: the husky's compass steps run at 60 Hz);
+        `solver_iterations`, per action set: the husky's compass steps run at 40 Hz);
       * `bullet_maze.ActionParams`: `control_period`;
       * `bullet_maze.LidarParams`: `lidar_rays`, `lidar_range` (a robot file may set its own
         defaults).
