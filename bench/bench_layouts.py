@@ -19,7 +19,10 @@ query costs replayed alone after the walk (``replay_bound``: a piece's cost depe
 not only on the count). A verdict per series at the largest N compares with the last, within
 ``NOISE``. The walk runs twice per round on fresh worlds: plain for the steps/s, then timed for
 the counts and fits (the timers' own cost, ``timer_cost``, is taken off the fitted cost per query);
-each several times, the fastest counting (``measure`` says why).
+each several times, the fastest counting (``measure`` says why). The verdict's ratio is
+``paired``: the case and its N = 10 reference walked in the same process in alternate segments,
+so that the machine's load falls on both alike; the ratio of the separate processes' rates is
+printed beside it.
 
 Each measurement runs in a fresh process. ``--compare-with DIR`` measures, in the same rounds, the
 package found in DIR, an export of an older tree (``git archive COMMIT | tar -x -C DIR``), for a
@@ -154,6 +157,34 @@ def measure(case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
         "dynamic": dynamic,
         "render_ms": render * 1e3,
     }
+
+
+def paired(spec: str, reference: str, steps: int) -> float:
+    """The case's kinematic speed over the reference's, both walked in this process at the same
+    time: fresh worlds of both, their walks cut at the resets into 1,000-step segments and run
+    alternately (reference, case, case, reference, ...), each segment timed in CPU time. A load
+    that slows the machine for a second or two slows both alike (separate processes, seconds apart,
+    let it fall on one). Each env's own walk is the same as alone: its own world, cells, noise and
+    starts; only the order of the segments between the two envs changes."""
+    walks = []
+    for which in (reference, spec):
+        env = gym.make("BulletMaze-v0", maze=which)
+        env.reset(seed=0)
+        rng = np.random.default_rng(0)
+        starts = free_points(env.unwrapped.layout, rng, 1 + steps // 1000)
+        walks.append((env, starts, rng.integers(0, 4, steps).tolist(), [0.0]))
+    for segment in range((steps + 999) // 1000):
+        for env, starts, actions, spent in walks if segment % 2 == 0 else walks[::-1]:
+            begin = time.process_time()
+            env.reset(options={"start": starts[segment]})
+            for action in actions[segment * 1000 : (segment + 1) * 1000]:
+                _, _, terminated, truncated, _ = env.step(action)
+                if terminated or truncated:
+                    env.reset()
+            spent[0] += time.process_time() - begin
+    for env, *_ in walks:
+        env.close()
+    return walks[0][3][0] / walks[1][3][0]
 
 
 def plain_walk(env: gym.Env, starts: list, actions: list[int]) -> float:
@@ -311,11 +342,16 @@ def free_points(layout: bullet_maze.MazeLayout, rng: np.random.Generator, n: int
     return points
 
 
-def measure_in(package: str, case: Case, steps: int, dynamic_steps: int) -> dict[str, float]:
-    """``measure`` in a fresh process that imports the package found in ``package``."""
+def measure_in(
+    package: str, case: Case, steps: int, dynamic_steps: int, reference: Case | None = None
+) -> dict[str, float]:
+    """``measure`` in a fresh process that imports the package found in ``package`` (and
+    ``paired`` with ``reference``, the N = 10 case of the series, unless it is that case)."""
     env = dict(os.environ, PYTHONPATH=package)
     command = [sys.executable, str(Path(__file__).resolve()), "--one", case.series, case.spec]
     command += ["--steps", str(steps), "--dynamic-steps", str(dynamic_steps)]
+    if reference is not None and reference != case:
+        command += ["--paired-with", reference.spec]
     out = subprocess.run(command, cwd=package, check=True, capture_output=True, text=True, env=env)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
@@ -331,16 +367,18 @@ def bench_solids(
         order = found if r % 2 == 0 else found[::-1]
         for case in order:
             for name, package in packages if r % 2 == 0 else packages[::-1]:
-                row = measure_in(package, case, steps, dynamic_steps)
+                reference = next(c for c in found if c.series == case.series)
+                row = measure_in(package, case, steps, dynamic_steps, reference)
                 results.setdefault((case, name), []).append(row)
         print(f"round {r + 1}/{rounds} done", file=sys.stderr)
     print(
         "| series | code | solids | arena | build (ms) | kinematic steps/s | vs N=10 | "
+        "vs N=10, paired | "
         "certificates' bound: queries | and pieces | and their handling | "
         "and the queries' own cost | queries/step | pieces/query | us/query | us/query replayed | "
         "dynamic steps/s | vs N=10 | render (ms) |"
     )
-    print("| --- " * 18 + "|")
+    print("| --- " * 19 + "|")
     verdicts = []
     for case in found:
         for name, _ in packages:
@@ -349,7 +387,8 @@ def bench_solids(
             reference = results[first, name]
             med = {key: statistics.median(row[key] for row in rows) for key in rows[0]}
             pairs = list(zip(rows, reference, strict=True))
-            ratios = [a["kinematic"] / b["kinematic"] for a, b in pairs]
+            apart = statistics.median(a["kinematic"] / b["kinematic"] for a, b in pairs)
+            ratios = [row["paired"] for row in rows]
             kin = statistics.median(ratios)
             low, high = np.percentile(ratios, [25, 75]) if len(ratios) > 1 else (kin, kin)
             dyn = statistics.median(a["dynamic"] / b["dynamic"] for a, b in pairs)
@@ -359,7 +398,7 @@ def bench_solids(
             by_replay = statistics.median(replay_bound(a, b) for a, b in pairs)
             print(
                 f"| {case.series} | {name} | {med['solids']:.0f} | {med['arena']:.0f} | "
-                f"{med['build_ms']:.0f} | {med['kinematic']:,.0f} | {kin:.2f} | "
+                f"{med['build_ms']:.0f} | {med['kinematic']:,.0f} | {apart:.2f} | {kin:.2f} | "
                 f"{by_count:.2f} | {by_pieces:.2f} | {by_steps:.2f} | {by_replay:.2f} | "
                 f"{med['queries']:.3f} | {med['pieces']:.2f} | {med['query_us']:.1f} | "
                 f"{med['replay_us']:.1f} | {med['dynamic']:,.0f} | "
@@ -367,7 +406,8 @@ def bench_solids(
             )
             if case.count == max(counts) and name == "this tree":
                 verdicts.append(
-                    f"{case.series}, N = {case.count}: kinematic {kin:.2f} of the N = 10 speed "
+                    f"{case.series}, N = {case.count}: kinematic {kin:.2f} of the N = 10 speed, "
+                    f"paired "
                     f"(rounds' quartiles {low:.2f}-{high:.2f}); "
                     f"the certificates' query count allows {by_count:.2f}, with the pieces each "
                     f"query reports {by_pieces:.2f}, with the whole cost of handling them in the "
@@ -543,11 +583,14 @@ def main() -> None:
     parser.add_argument("--dynamic-steps", type=int, default=2_000, help="dynamic steps per case")
     parser.add_argument("--compare-with", metavar="DIR", help="an older tree to compare with")
     parser.add_argument("--one", nargs=2, metavar=("SERIES", "SPEC"), help=argparse.SUPPRESS)
+    parser.add_argument("--paired-with", metavar="SPEC", help=argparse.SUPPRESS)
     parser.add_argument("--quick", action="store_true", help="a smoke test: small and short")
     args = parser.parse_args()
     if args.one:  # one measurement, for measure_in
         case = Case(args.one[0], 0, args.one[1])
-        print(json.dumps(measure(case, args.steps, args.dynamic_steps)))
+        row = measure(case, args.steps, args.dynamic_steps)
+        row["paired"] = paired(case.spec, args.paired_with, args.steps) if args.paired_with else 1.0
+        print(json.dumps(row))
         return
     jobs: dict[str, Callable[[], None]] = {
         "solids": lambda: bench_solids(
