@@ -53,7 +53,8 @@ def test_without_a_goal_the_bonus_applies_as_always(make_corridor: Callable[...,
     assert not any(s.success for s in history_b)
     assert [s.steps for s in history_a] == [s.steps for s in history_b]
     assert a.q == b.q
-    assert b.model is not None and b.model.terminals == 0
+    assert b.model is not None
+    assert b.model.terminals == 0
     assert b._bonus_function() is not None
 
 
@@ -79,18 +80,20 @@ def test_the_bonus_ends_at_the_first_goal(make_corridor: Callable[..., Any]) -> 
 def test_the_bonus_steers_the_greedy_policy_before_the_goal(
     make_corridor: Callable[..., Any],
 ) -> None:
-    none, history_none = trained(make_corridor, dataclasses.replace(SWEEP, model_bonus=0.0), 8)
-    until, history_until = trained(make_corridor, UNTIL_GOAL, 8)
+    _none, history_none = trained(make_corridor, dataclasses.replace(SWEEP, model_bonus=0.0), 8)
+    _until, history_until = trained(make_corridor, UNTIL_GOAL, 8)
     assert [s.steps for s in history_none] != [s.steps for s in history_until]
 
 
 def test_the_count_is_saved_and_learning_continues_the_same(
     make_corridor: Callable[..., Any], tmp_path: Path
 ) -> None:
-    agent, history = trained(make_corridor, UNTIL_GOAL, 15)
-    assert agent.model is not None and agent.model.terminals > 0
+    agent, _history = trained(make_corridor, UNTIL_GOAL, 15)
+    assert agent.model is not None
+    assert agent.model.terminals > 0
     loaded = TreeAgent.load(agent.save(tmp_path / "until"))
-    assert loaded.model is not None and loaded.model.terminals == agent.model.terminals
+    assert loaded.model is not None
+    assert loaded.model.terminals == agent.model.terminals
     a = [s.steps for s in agent.learn(make_corridor(), 10, reset_seed=5)]
     b = [s.steps for s in loaded.learn(make_corridor(), 10, reset_seed=5)]
     assert a == b
@@ -114,7 +117,11 @@ def test_a_model_saved_before_the_field_loads_with_no_terminals() -> None:
 def test_a_grid_agent_ends_its_bonus_too(make_corridor: Callable[..., Any]) -> None:
     corridor = make_corridor()
     agent = GridAgent(
-        corridor.observation_space, corridor.action_space, "epsilon-greedy", 0, UNTIL_GOAL,
+        corridor.observation_space,
+        corridor.action_space,
+        "epsilon-greedy",
+        0,
+        UNTIL_GOAL,
         resolution=8,
     )
     history = agent.learn(corridor, 30, reset_seed=0)
