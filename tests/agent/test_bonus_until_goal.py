@@ -38,6 +38,7 @@ def trained(
 def test_the_default_is_off_and_the_general_preset_leaves_it_off() -> None:
     assert TreeConfig().model_bonus_terminals == 0
     assert preset("paper").config.model_bonus_terminals == 0
+    assert preset("general").config.model_bonus_terminals == 0
 
 
 @pytest.mark.parametrize("bad", [-1, 1.5, True, "1"])
