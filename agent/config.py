@@ -120,6 +120,15 @@ class TreeConfig:
     passes). Measured on the development cases and not adopted by the general preset
     (docs/paper-notes.md, "A leaf budget that grows with the terminals")."""
 
+    model_bonus_terminals: int = 0
+    """Directed exploration before the goal is found (beyond the paper): with ``model_bonus``
+    > 0 and this field n > 0, the bonus applies only until the agent has seen n terminal
+    transitions (the goal on a maze); then every Q-bar the model holds is recomputed without
+    it and the sweeps go on as usual. Before any terminal transition the rewards carry no
+    information about where the goal is, so the bonus can only steer the greedy policy
+    towards the least-tried (leaf, action) pairs; afterwards the learner is the one without
+    a bonus. 0: the bonus (if any) applies for ever."""
+
     def __post_init__(self) -> None:
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)
         _check_range("gamma", self.gamma, 0.0, 1.0)
@@ -154,6 +163,7 @@ class TreeConfig:
             ("sweep_backups", 0),
             ("initial_depth", 0),
             ("leaves_per_terminal", 0),
+            ("model_bonus_terminals", 0),
         ):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < least:

@@ -38,3 +38,20 @@ class GridAgent(SMDPAgent):
 
     def _make_partition(self, low: list[float], high: list[float]) -> UniformGrid:
         return UniformGrid(low, high, self.resolution)
+
+    def _end_epoch(
+        self,
+        leaf: int,
+        action: int,
+        xs: list[list[float]],
+        rs: list[float],
+        bootstrap: float,
+        end_x: list[float] | None = None,
+        terminated: bool = False,
+    ) -> bool:
+        """:meth:`SMDPAgent._end_epoch`; a terminal epoch may end the model's bonus
+        (``TreeConfig.model_bonus_terminals``)."""
+        split = super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
+        if terminated:
+            self._after_terminal_epoch()
+        return split

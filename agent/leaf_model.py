@@ -50,6 +50,8 @@ class LeafModel:
         """Epochs ever recorded per key (a split hands each child the epochs it receives)."""
         self._queue: list[tuple[float, int]] = []
         self._priority: dict[int, float] = {}
+        self.terminals = 0
+        """Terminal epochs ever recorded (``TreeConfig.model_bonus_terminals`` reads it)."""
 
     def count(self, leaf: int, action: int) -> int:
         """Epochs in the window of (leaf, action)."""
@@ -78,6 +80,8 @@ class LeafModel:
             old = records.popleft()
             self._link(old[4], key, -1)
         self.epochs[key] = self.epochs.get(key, 0) + 1
+        if end is None:
+            self.terminals += 1
         self._aggregate(key)
 
     def value(self, leaf: int, action: int, q: list[list[float]]) -> float | None:
@@ -132,6 +136,25 @@ class LeafModel:
                 if change > tolerance:
                     self.push(pred, change)
         return done
+
+    def backup_all(self, q: list[list[float]]) -> dict[int, float]:
+        """Set every modelled Q-bar(leaf, action) to its model value under ``q`` (one pass, in
+        the order the keys were stored, each backup seeing the ones before it); returns each
+        leaf whose V-bar moved, with how far (the caller queues them for the sweeps)."""
+        n_actions = self.n_actions
+        changes: dict[int, float] = {}
+        for key in list(self._records):
+            leaf, action = divmod(key, n_actions)
+            value = self.value(leaf, action, q)
+            if value is None:
+                continue
+            row = q[leaf]
+            before = max(row)
+            row[action] = value
+            change = abs(max(row) - before)
+            if change > 0.0:
+                changes[leaf] = changes.get(leaf, 0.0) + change
+        return changes
 
     def split(
         self, parent: int, children: tuple[int, int], leaf_of: Callable[[list[float]], int]
@@ -221,6 +244,7 @@ class LeafModel:
             ],
             "heap": [[p, leaf] for p, leaf in self._queue],
             "priority": [[leaf, p] for leaf, p in self._priority.items()],
+            "terminals": self.terminals,
         }
 
     @classmethod
@@ -256,4 +280,8 @@ class LeafModel:
         model._queue = [(float(p), int(leaf)) for p, leaf in state["heap"]]
         heapq.heapify(model._queue)
         model._priority = {int(leaf): float(p) for leaf, p in state["priority"]}
+        terminals = state.get("terminals", 0)  # absent in files written before the field
+        if isinstance(terminals, bool) or not isinstance(terminals, int) or terminals < 0:
+            raise ValueError(f"the model's terminal count {terminals!r} is not an int >= 0")
+        model.terminals = terminals
         return model

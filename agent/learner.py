@@ -326,15 +326,36 @@ class SMDPAgent:
         return value * self.scale.value if self._track_scale else value
 
     def _bonus(self, leaf: int, action: int) -> float:
-        """MBIE-EB bonus ``beta / sqrt(n(leaf, action))`` of ``TreeConfig.model_bonus``."""
+        """MBIE-EB bonus ``beta / sqrt(n(leaf, action))`` of ``TreeConfig.model_bonus`` (0 once
+        ``TreeConfig.model_bonus_terminals`` terminal epochs have been recorded)."""
         beta = self.config.model_bonus
-        if beta == 0.0 or self.model is None:
+        if beta == 0.0 or self.model is None or self._bonus_expired():
             return 0.0
         n = self.model.epochs.get(leaf * self.n_actions + action, 0)
         return self._in_units(beta) / math.sqrt(n) if n else 0.0
 
     def _bonus_function(self) -> Callable[[int, int], float] | None:
-        return self._bonus if self.config.model_bonus > 0.0 else None
+        if self.config.model_bonus > 0.0 and not self._bonus_expired():
+            return self._bonus
+        return None
+
+    def _bonus_expired(self) -> bool:
+        """Whether ``TreeConfig.model_bonus_terminals`` terminal epochs have been recorded."""
+        limit = self.config.model_bonus_terminals
+        return limit > 0 and self.model is not None and self.model.terminals >= limit
+
+    def _after_terminal_epoch(self) -> None:
+        """Called after each terminal epoch: the epoch that ends the bonus
+        (``TreeConfig.model_bonus_terminals``) recomputes every Q-bar the model holds without
+        it and queues the leaves that moved, so that no value keeps the bonus it was given."""
+        model = self.model
+        cfg = self.config
+        if model is None or cfg.model_bonus == 0.0 or cfg.model_bonus_terminals == 0:
+            return
+        if model.terminals != cfg.model_bonus_terminals:
+            return
+        for leaf, change in model.backup_all(self.q).items():
+            model.push(leaf, change)
 
     def _end_held_run(
         self,

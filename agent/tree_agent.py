@@ -36,10 +36,14 @@ class TreeAgent(SMDPAgent):
         terminated: bool = False,
     ) -> bool:
         """:meth:`SMDPAgent._end_epoch`; a terminal epoch first grows a gated tree's leaf
-        budget (``TreeConfig.leaves_per_terminal``)."""
+        budget (``TreeConfig.leaves_per_terminal``) and afterwards may end the model's bonus
+        (``TreeConfig.model_bonus_terminals``)."""
         if terminated and type(self.partition) is GatedPartitionTree:
             self.partition.terminals += 1
-        return super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
+        split = super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
+        if terminated:
+            self._after_terminal_epoch()
+        return split
 
     @property
     def depth(self) -> int:

@@ -37,6 +37,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others = {"initial_depth", "presplit_each_dimension", "model_bonus", "sweep_tolerance"}
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
+    assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
 
 
 @pytest.mark.parametrize("name", sorted(PRESETS))
