@@ -120,6 +120,16 @@ class TreeConfig:
     passes). Measured on the development cases and not adopted by the general preset
     (docs/paper-notes.md, "A leaf budget that grows with the terminals")."""
 
+    ensemble_trees: int = 1
+    """Several trees whose Q-bar values are averaged, as tile coding averages offset tilings
+    (beyond the paper; :class:`agent.tree_ensemble.TreeEnsembleAgent`): tree k's presplit
+    points move from the midpoints by Sutton's asymmetric offsets ((2d + 1) k / K, mod 1, of
+    half the width in dimension d), every tree learns its own SMDP epochs (and model) from the
+    one trajectory, and the actions follow the mean of the trees' rows. A decision point is
+    any tree's leaf change, so the composite cells are finer than any one tree's leaves.
+    1: one tree (the paper). Needs ``presplit_each_dimension`` or ``initial_depth`` (else the
+    trees start alike and stay alike)."""
+
     def __post_init__(self) -> None:
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)
         _check_range("gamma", self.gamma, 0.0, 1.0)
@@ -154,6 +164,7 @@ class TreeConfig:
             ("sweep_backups", 0),
             ("initial_depth", 0),
             ("leaves_per_terminal", 0),
+            ("ensemble_trees", 1),
         ):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < least:
@@ -162,6 +173,21 @@ class TreeConfig:
             raise TypeError(
                 f"TreeConfig.presplit_each_dimension must be a bool, "
                 f"got {self.presplit_each_dimension!r}"
+            )
+        if self.ensemble_trees > 64:
+            raise ValueError(
+                f"TreeConfig.ensemble_trees must be at most 64, got {self.ensemble_trees!r}"
+            )
+        if self.ensemble_trees > 1 and self.initial_depth == 0 and not self.presplit_each_dimension:
+            raise ValueError(
+                f"TreeConfig.ensemble_trees = {self.ensemble_trees} needs a presplit "
+                "(presplit_each_dimension = True or initial_depth > 0): the offsets move the "
+                "presplit points, and unsplit trees would stay identical"
+            )
+        if self.ensemble_trees > 1 and self.leaves_per_terminal > 0:
+            raise ValueError(
+                "TreeConfig.ensemble_trees > 1 and leaves_per_terminal > 0 cannot be combined "
+                f"(got {self.ensemble_trees} and {self.leaves_per_terminal})"
             )
         if self.initial_depth > 16:
             raise ValueError(

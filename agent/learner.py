@@ -69,6 +69,8 @@ class SMDPAgent:
     kind = "smdp"
     accepts_unbounded = False
     """Whether the partition grows unbounded observation dimensions from the data."""
+    ensembles = False
+    """Whether the class runs ``TreeConfig.ensemble_trees`` trees (:mod:`agent.tree_ensemble`)."""
 
     def __init__(
         self,
@@ -87,6 +89,12 @@ class SMDPAgent:
         self.config = config if config is not None else TreeConfig()
         if not isinstance(self.config, TreeConfig):
             raise TypeError(f"config must be a TreeConfig, got {type(self.config).__name__}")
+        if self.config.ensemble_trees > 1 and not self.ensembles:
+            raise ValueError(
+                f"TreeConfig.ensemble_trees = {self.config.ensemble_trees} needs "
+                f"agent.tree_ensemble.TreeEnsembleAgent, not {type(self).__name__} "
+                "(agent.tree_ensemble.tree_agent_class(config) picks the class)"
+            )
         if isinstance(exploration, str):
             exploration = make_exploration(exploration)
         elif not isinstance(exploration, Exploration):
