@@ -120,6 +120,14 @@ class TreeConfig:
     passes). Measured on the development cases and not adopted by the general preset
     (docs/paper-notes.md, "A leaf budget that grows with the terminals")."""
 
+    decision_steps: int | None = None
+    """An epoch of an action that is not a held exploratory run ends after this many steps
+    (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
+    action is otherwise kept until the leaf changes, for up to 50 steps: on a task whose state
+    moves through a leaf in a few steps while the right action changes within it (Acrobot's
+    swing, CartPole's balance) the agent re-decides this often, while an exploratory action
+    is still held as long as ``max_epoch_steps`` allows (the maze's reading A). Runs on
+    :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
     ensemble_trees: int = 1
     """Several trees whose Q-bar values are averaged, as tile coding averages offset tilings
     (beyond the paper; :class:`agent.tree_ensemble.TreeEnsembleAgent`): tree k's presplit
@@ -141,6 +149,15 @@ class TreeConfig:
             raise ValueError(
                 f"TreeConfig.max_epoch_steps must be a positive int or None, "
                 f"got {self.max_epoch_steps!r}"
+            )
+        if self.decision_steps is not None and (
+            isinstance(self.decision_steps, bool)
+            or not isinstance(self.decision_steps, int)
+            or self.decision_steps < 1
+        ):
+            raise ValueError(
+                f"TreeConfig.decision_steps must be a positive int or None, "
+                f"got {self.decision_steps!r}"
             )
         if not isinstance(self.split_min_samples, int) or self.split_min_samples < 2:
             raise ValueError(

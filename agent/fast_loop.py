@@ -116,8 +116,9 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "presplit_each_dimension": bool,
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off
     "leaves_per_terminal": int,
-    # above 1 the agent is a TreeEnsembleAgent, whose class turns the loop off
+    # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
+    "decision_steps": (int, type(None)),
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""

@@ -89,12 +89,14 @@ class SMDPAgent:
         self.config = config if config is not None else TreeConfig()
         if not isinstance(self.config, TreeConfig):
             raise TypeError(f"config must be a TreeConfig, got {type(self.config).__name__}")
-        if self.config.ensemble_trees > 1 and not self.ensembles:
-            raise ValueError(
-                f"TreeConfig.ensemble_trees = {self.config.ensemble_trees} needs "
-                f"agent.tree_ensemble.TreeEnsembleAgent, not {type(self).__name__} "
-                "(agent.tree_ensemble.tree_agent_class(config) picks the class)"
-            )
+        if not self.ensembles:
+            for name, off in (("ensemble_trees", 1), ("decision_steps", None)):
+                if getattr(self.config, name) != off:
+                    raise ValueError(
+                        f"TreeConfig.{name} = {getattr(self.config, name)} needs "
+                        f"agent.tree_ensemble.TreeEnsembleAgent, not {type(self).__name__} "
+                        "(agent.tree_ensemble.tree_agent_class(config) picks the class)"
+                    )
         if isinstance(exploration, str):
             exploration = make_exploration(exploration)
         elif not isinstance(exploration, Exploration):
@@ -531,6 +533,10 @@ class SMDPAgent:
             kinds.setdefault(agent_class.kind, agent_class)
             pending += agent_class.__subclasses__()
         found = kinds.get(saved.kind)
+        if saved.kind == "tree":
+            from agent.tree_ensemble import tree_agent_class
+
+            found = tree_agent_class(saved.config)
         if found is None or found is SMDPAgent:
             raise saved.fail(f"unknown agent kind {saved.kind!r}")
         if not issubclass(found, cls):

@@ -86,7 +86,8 @@ class _Member(TreeAgent):
 
 
 class TreeEnsembleAgent(TreeAgent):
-    """``TreeConfig.ensemble_trees`` adaptive trees with offset presplits, Q-bar averaged.
+    """``TreeConfig.ensemble_trees`` adaptive trees with offset presplits, Q-bar averaged; its
+    loop also runs ``TreeConfig.decision_steps`` (for one tree too).
 
     Example::
 
@@ -95,7 +96,8 @@ class TreeEnsembleAgent(TreeAgent):
                                   seed=0, config=config)
     """
 
-    kind = "tree-ensemble"
+    kind = "tree"
+    """One tree's file is a tree's file; :meth:`SMDPAgent.load` picks this class by its config."""
     ensembles = True
 
     def __init__(
@@ -152,6 +154,10 @@ class TreeEnsembleAgent(TreeAgent):
         return sum(m.partition.n_leaves for m in self.members)
 
     def save(self, path: str | PathLike[str], policy_only: bool = False) -> Path:
+        """:meth:`SMDPAgent.save` for one tree (``decision_steps`` alone); an ensemble of
+        several trees has no file format yet (a ValueError)."""
+        if len(self.members) == 1:
+            return super().save(path, policy_only)
         raise ValueError(
             f"cannot save {path}: a tree ensemble (TreeConfig.ensemble_trees = "
             f"{self.config.ensemble_trees}) has no file format yet"
@@ -164,6 +170,7 @@ class TreeEnsembleAgent(TreeAgent):
         strategy = self.exploration
         rng = self.uniform
         cap = cfg.max_epoch_steps if cfg.max_epoch_steps is not None else 1 << 62
+        decide = cap if cfg.decision_steps is None else cfg.decision_steps
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
         hold_exploration = cfg.hold_exploration
@@ -202,7 +209,7 @@ class TreeEnsembleAgent(TreeAgent):
             if (
                 done
                 or (nxt != leaves and not hold)
-                or len(rs) >= cap
+                or len(rs) >= (cap if hold else decide)
                 or (collided and end_on_collision)
             ):
                 splits = []
@@ -248,5 +255,9 @@ class TreeEnsembleAgent(TreeAgent):
 
 
 def tree_agent_class(config: TreeConfig) -> type[TreeAgent]:
-    """The tree agent a configuration asks for: the ensemble when ``ensemble_trees > 1``."""
-    return TreeEnsembleAgent if config.ensemble_trees > 1 else TreeAgent
+    """The tree agent a configuration asks for: :class:`TreeEnsembleAgent` when
+    ``ensemble_trees > 1`` or ``decision_steps`` is set (its loop runs both), else
+    :class:`TreeAgent`."""
+    if config.ensemble_trees > 1 or config.decision_steps is not None:
+        return TreeEnsembleAgent
+    return TreeAgent

@@ -141,3 +141,33 @@ def test_bad_ensembles_are_refused_with_the_field_named() -> None:
     agent = TreeEnsembleAgent(env.observation_space, env.action_space, "greedy", 0, config)
     with pytest.raises(ValueError, match="has no file format yet"):
         agent.save("x.npz")
+
+
+def test_decision_steps_cut_greedy_epochs_but_not_held_runs(tmp_path: Any) -> None:
+    env = Walk()
+    config = plain_config(decision_steps=2)
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    assert type(agent) is TreeEnsembleAgent
+    for row in agent.q:
+        row[:] = [-1e6, 1e-9]
+    stats = agent.learn(env, 1, reset_seed=0)[0]
+    # inputs 0.02 0.12 | 0.22 0.32 | 0.42 | (the leaf changes) 0.52 0.62 | 0.72 0.82 | 0.92
+    assert (stats.steps, stats.epochs) == (10, 6)
+    # an exploratory action is still held for max_epoch_steps (None: to the episode's end)
+    held = dataclasses.replace(config, hold_exploration=True, decision_steps=1)
+    explorer = TreeEnsembleAgent(
+        env.observation_space, env.action_space, "epsilon-greedy", 0, held
+    )
+    explorer.exploration._epsilon = 1.0  # type: ignore[attr-defined]
+    stats = explorer.learn(env, 1, reset_seed=0)[0]
+    assert stats.epochs == 1 and stats.steps >= 10
+    # one tree on this loop saves and loads like a TreeAgent
+    path = agent.save(tmp_path / "agent.npz")
+    loaded = TreeAgent.load(path)
+    assert type(loaded) is TreeEnsembleAgent
+    assert loaded.q == agent.q
+    assert loaded.config.decision_steps == 2
+    with pytest.raises(ValueError, match="decision_steps must be a positive int or None"):
+        TreeConfig(decision_steps=0)
+    with pytest.raises(ValueError, match=r"decision_steps = 2 needs agent\.tree_ensemble"):
+        TreeAgent(env.observation_space, env.action_space, "greedy", 0, config)
