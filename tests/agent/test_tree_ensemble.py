@@ -155,12 +155,11 @@ def test_decision_steps_cut_greedy_epochs_but_not_held_runs(tmp_path: Any) -> No
     assert (stats.steps, stats.epochs) == (10, 6)
     # an exploratory action is still held for max_epoch_steps (None: to the episode's end)
     held = dataclasses.replace(config, hold_exploration=True, decision_steps=1)
-    explorer = TreeEnsembleAgent(
-        env.observation_space, env.action_space, "epsilon-greedy", 0, held
-    )
+    explorer = TreeEnsembleAgent(env.observation_space, env.action_space, "epsilon-greedy", 0, held)
     explorer.exploration._epsilon = 1.0  # type: ignore[attr-defined]
     stats = explorer.learn(env, 1, reset_seed=0)[0]
-    assert stats.epochs == 1 and stats.steps >= 10
+    assert stats.epochs == 1
+    assert stats.steps >= 10
     # one tree on this loop saves and loads like a TreeAgent
     path = agent.save(tmp_path / "agent.npz")
     loaded = TreeAgent.load(path)
