@@ -126,7 +126,10 @@ class TreeConfig:
     action is otherwise kept until the leaf changes, for up to 50 steps: on a task whose state
     moves through a leaf in a few steps while the right action changes within it (Acrobot's
     swing, CartPole's balance) the agent re-decides this often, while an exploratory action
-    is still held as long as ``max_epoch_steps`` allows (the maze's reading A). Runs on
+    is still held as long as ``max_epoch_steps`` allows (the maze's reading A). The action
+    after an epoch cut inside the same leaf is the greedy one (the strategy is asked only
+    where it would be without this option: a leaf change, a split, a collision, the end of a
+    held run), so the tabu list does not force a switch at every cut. Runs on
     :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
     ensemble_trees: int = 1
     """Several trees whose Q-bar values are averaged, as tile coding averages offset tilings

@@ -36,6 +36,7 @@ from gymnasium import spaces
 from agent.config import TreeConfig
 from agent.episode_stats import EpisodeStats
 from agent.exploration import Exploration, Greedy
+from agent.exploration.base import greedy_action
 from agent.learner import Bounds, SMDPAgent
 from agent.partition_tree import PartitionTree
 from agent.tree_agent import TreeAgent
@@ -170,6 +171,7 @@ class TreeEnsembleAgent(TreeAgent):
         strategy = self.exploration
         rng = self.uniform
         cap = cfg.max_epoch_steps if cfg.max_epoch_steps is not None else 1 << 62
+        redecide = cfg.decision_steps is not None
         decide = cap if cfg.decision_steps is None else cfg.decision_steps
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
@@ -212,6 +214,10 @@ class TreeEnsembleAgent(TreeAgent):
                 or len(rs) >= (cap if hold else decide)
                 or (collided and end_on_collision)
             ):
+                # decision_steps: an unheld epoch cut inside the same cell continues greedily
+                inside = (
+                    redecide and not hold and nxt == leaves and not (collided and end_on_collision)
+                )
                 splits = []
                 for i, m in enumerate(members):
                     if hold:
@@ -228,8 +234,12 @@ class TreeEnsembleAgent(TreeAgent):
                 ]
                 current = list(leaves)
                 held = [[] for _ in members]
-                action = strategy.select(leaves[0], self.mean_row(leaves), rng)
-                hold = hold_exploration and strategy.explored
+                if inside and not any(splits):
+                    action = greedy_action(self.mean_row(leaves), rng)
+                    hold = False
+                else:
+                    action = strategy.select(leaves[0], self.mean_row(leaves), rng)
+                    hold = hold_exploration and strategy.explored
                 eps_sum += strategy.epsilon(leaves[0])
                 epochs += 1
                 xs = []

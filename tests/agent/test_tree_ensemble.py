@@ -170,3 +170,15 @@ def test_decision_steps_cut_greedy_epochs_but_not_held_runs(tmp_path: Any) -> No
         TreeConfig(decision_steps=0)
     with pytest.raises(ValueError, match=r"decision_steps = 2 needs agent\.tree_ensemble"):
         TreeAgent(env.observation_space, env.action_space, "greedy", 0, config)
+
+
+def test_a_cut_inside_the_leaf_continues_greedily_past_the_tabu_list() -> None:
+    # greedy + tabu: every epoch lists (leaf, action). Asked at every one-step cut, the strategy
+    # would switch to action 0 (0.05 a step) each second step; the cut keeps the greedy action 1.
+    env = Walk()
+    config = plain_config(decision_steps=1)
+    agent = TreeEnsembleAgent(env.observation_space, env.action_space, "greedy+tabu", 0, config)
+    for row in agent.q:
+        row[:] = [-1e6, 1e-9]
+    stats = agent.learn(env, 1, reset_seed=0)[0]
+    assert (stats.steps, stats.epochs) == (10, 10)
