@@ -131,6 +131,10 @@ class TreeConfig:
     where it would be without this option: a leaf change, a split, a collision, the end of a
     held run), so the tabu list does not force a switch at every cut. Runs on
     :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
+    hold_steps: int | None = None
+    """A held exploratory run ends after this many steps (beyond the paper; None:
+    ``max_epoch_steps``, which then caps unheld epochs only). Runs on
+    :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
     ensemble_trees: int = 1
     """Several trees whose Q-bar values are averaged, as tile coding averages offset tilings
     (beyond the paper; :class:`agent.tree_ensemble.TreeEnsembleAgent`): tree k's presplit
@@ -152,6 +156,14 @@ class TreeConfig:
             raise ValueError(
                 f"TreeConfig.max_epoch_steps must be a positive int or None, "
                 f"got {self.max_epoch_steps!r}"
+            )
+        if self.hold_steps is not None and (
+            isinstance(self.hold_steps, bool)
+            or not isinstance(self.hold_steps, int)
+            or self.hold_steps < 1
+        ):
+            raise ValueError(
+                f"TreeConfig.hold_steps must be a positive int or None, got {self.hold_steps!r}"
             )
         if self.decision_steps is not None and (
             isinstance(self.decision_steps, bool)

@@ -119,6 +119,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
     "decision_steps": (int, type(None)),
+    "hold_steps": (int, type(None)),
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""

@@ -90,7 +90,11 @@ class SMDPAgent:
         if not isinstance(self.config, TreeConfig):
             raise TypeError(f"config must be a TreeConfig, got {type(self.config).__name__}")
         if not self.ensembles:
-            for name, off in (("ensemble_trees", 1), ("decision_steps", None)):
+            for name, off in (
+                ("ensemble_trees", 1),
+                ("decision_steps", None),
+                ("hold_steps", None),
+            ):
                 if getattr(self.config, name) != off:
                     raise ValueError(
                         f"TreeConfig.{name} = {getattr(self.config, name)} needs "

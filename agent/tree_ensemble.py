@@ -88,7 +88,7 @@ class _Member(TreeAgent):
 
 class TreeEnsembleAgent(TreeAgent):
     """``TreeConfig.ensemble_trees`` adaptive trees with offset presplits, Q-bar averaged; its
-    loop also runs ``TreeConfig.decision_steps`` (for one tree too).
+    loop also runs ``TreeConfig.decision_steps`` and ``hold_steps`` (for one tree too).
 
     Example::
 
@@ -171,6 +171,7 @@ class TreeEnsembleAgent(TreeAgent):
         strategy = self.exploration
         rng = self.uniform
         cap = cfg.max_epoch_steps if cfg.max_epoch_steps is not None else 1 << 62
+        hold_cap = cap if cfg.hold_steps is None else cfg.hold_steps
         redecide = cfg.decision_steps is not None
         decide = cap if cfg.decision_steps is None else cfg.decision_steps
         key = cfg.collision_key
@@ -211,7 +212,7 @@ class TreeEnsembleAgent(TreeAgent):
             if (
                 done
                 or (nxt != leaves and not hold)
-                or len(rs) >= (cap if hold else decide)
+                or len(rs) >= (hold_cap if hold else decide)
                 or (collided and end_on_collision)
             ):
                 # decision_steps: an unheld epoch cut inside the same cell continues greedily
@@ -266,8 +267,12 @@ class TreeEnsembleAgent(TreeAgent):
 
 def tree_agent_class(config: TreeConfig) -> type[TreeAgent]:
     """The tree agent a configuration asks for: :class:`TreeEnsembleAgent` when
-    ``ensemble_trees > 1`` or ``decision_steps`` is set (its loop runs both), else
-    :class:`TreeAgent`."""
-    if config.ensemble_trees > 1 or config.decision_steps is not None:
+    ``ensemble_trees > 1`` or ``decision_steps`` or ``hold_steps`` is set (its loop runs
+    them), else :class:`TreeAgent`."""
+    if (
+        config.ensemble_trees > 1
+        or config.decision_steps is not None
+        or config.hold_steps is not None
+    ):
         return TreeEnsembleAgent
     return TreeAgent

@@ -182,3 +182,17 @@ def test_a_cut_inside_the_leaf_continues_greedily_past_the_tabu_list() -> None:
         row[:] = [-1e6, 1e-9]
     stats = agent.learn(env, 1, reset_seed=0)[0]
     assert (stats.steps, stats.epochs) == (10, 10)
+
+
+def test_hold_steps_cap_a_held_run_only() -> None:
+    env = Walk()
+    config = plain_config(hold_exploration=True, max_epoch_steps=None, hold_steps=3)
+    explorer = tree_agent_class(config)(
+        env.observation_space, env.action_space, "epsilon-greedy", 0, config
+    )
+    explorer.exploration._epsilon = 1.0  # type: ignore[attr-defined]
+    stats = explorer.learn(env, 1, reset_seed=0)[0]
+    # every choice is random and held for 3 steps (the last run may be cut by the end)
+    assert stats.epochs == -(-stats.steps // 3)
+    with pytest.raises(ValueError, match="hold_steps must be a positive int or None"):
+        TreeConfig(hold_steps=0)
