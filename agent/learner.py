@@ -512,6 +512,9 @@ class SMDPAgent:
             terminals = getattr(self.partition, "terminals", None)
             if terminals is not None:
                 learner["gate"] = {"terminals": terminals}
+            seen = getattr(self, "terminals_seen", None)
+            if seen is not None:
+                learner["loop"] = {"terminals": seen}
             if learner:
                 metadata["learner"] = learner
         arrays: dict[str, Any] = {
@@ -591,6 +594,11 @@ class SMDPAgent:
                 if isinstance(terminals, bool) or not isinstance(terminals, int) or terminals < 0:
                     raise ValueError(f"learner gate terminals {terminals!r} is not an int >= 0")
                 setattr(agent.partition, "terminals", terminals)  # noqa: B010 (a gated tree)
+            if "loop" in learner and hasattr(agent, "terminals_seen"):
+                seen = learner["loop"].get("terminals")
+                if isinstance(seen, bool) or not isinstance(seen, int) or seen < 0:
+                    raise ValueError(f"learner loop terminals {seen!r} is not an int >= 0")
+                setattr(agent, "terminals_seen", seen)  # noqa: B010 (TreeEnsembleAgent)
         except (
             TypeError,
             ValueError,

@@ -116,6 +116,8 @@ class TreeEnsembleAgent(TreeAgent):
         self.members: list[SMDPAgent] = [self]
         self.members += [_Member(self, presplit_shifts(i, k, dims)) for i in range(1, k)]
         """Tree 0 (this agent) and the shifted trees."""
+        self.terminals_seen = 0
+        """Terminal transitions seen (``TreeConfig.decision_from_terminal``)."""
 
     def learn(
         self,
@@ -172,8 +174,10 @@ class TreeEnsembleAgent(TreeAgent):
         rng = self.uniform
         cap = cfg.max_epoch_steps if cfg.max_epoch_steps is not None else 1 << 62
         hold_cap = cap if cfg.hold_steps is None else cfg.hold_steps
-        redecide = cfg.decision_steps is not None
-        decide = cap if cfg.decision_steps is None else cfg.decision_steps
+        redecide = cfg.decision_steps is not None and (
+            self.terminals_seen > 0 or not cfg.decision_from_terminal
+        )
+        decide = cfg.decision_steps if redecide and cfg.decision_steps is not None else cap
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
         hold_exploration = cfg.hold_exploration
@@ -245,6 +249,8 @@ class TreeEnsembleAgent(TreeAgent):
                 epochs += 1
                 xs = []
                 rs = []
+        if terminated:
+            self.terminals_seen += 1
         success = bool(info["is_success"]) if "is_success" in info else bool(terminated)
         strategy.on_episode_end(success)
         for m in members[1:]:

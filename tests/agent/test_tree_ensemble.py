@@ -196,3 +196,17 @@ def test_hold_steps_cap_a_held_run_only() -> None:
     assert stats.epochs == -(-stats.steps // 3)
     with pytest.raises(ValueError, match="hold_steps must be a positive int or None"):
         TreeConfig(hold_steps=0)
+
+
+def test_decisions_from_the_first_terminal_on(tmp_path: Any) -> None:
+    env = Walk()
+    config = plain_config(decision_steps=2, decision_from_terminal=True)
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    for row in agent.q:
+        row[:] = [-1e6, 1e-9]
+    first, second = agent.learn(env, 2, reset_seed=0)
+    assert first.epochs == 2  # no terminal seen yet: the leaf change at 0.5 only
+    assert second.epochs == 6  # then every second step as well
+    assert agent.terminals_seen == 2
+    loaded = TreeAgent.load(agent.save(tmp_path / "agent.npz"))
+    assert loaded.terminals_seen == 2  # type: ignore[attr-defined]
