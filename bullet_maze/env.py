@@ -11,7 +11,7 @@ import numbers
 import os
 import sys
 from collections import deque
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any, NamedTuple, SupportsFloat
 
@@ -37,7 +37,7 @@ from bullet_maze.perturbations import (
     parse_setting,
     parse_settings,
 )
-from bullet_maze.planning import PhysicalLimit, goal_reachable, shortest_path
+from bullet_maze.planning import PhysicalLimit, goal_test, shortest_path
 from bullet_maze.rendering import TopDownCamera
 from bullet_maze.robots import (
     Command,
@@ -221,7 +221,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
       * `bullet_maze.PhysicsParams` (dynamic mode): `time_step`, `substeps`,
         `solver_iterations`, `revert_on_collision`, `max_turn_substeps`,
         `max_drive_substeps` (a robot file's `[physics]` may set its own `time_step` and
-        `solver_iterations`, per action set: the husky's compass steps run at 60 Hz);
+        `solver_iterations`, per action set: the husky's compass steps run at 40 Hz);
       * `bullet_maze.ActionParams`: `control_period`;
       * `bullet_maze.LidarParams`: `lidar_rays`, `lidar_range` (a robot file may set its own
         defaults).
@@ -328,6 +328,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         task, physics, action_params, lidar_params, settings = _split_params(params, spec, actions)
         self.task, self.physics = task, physics
         self.layout = load_layout(maze)
+        self._goal_test: Callable[[tuple[float, float], tuple[float, float]], bool] | None = None
         self.mode = mode
         self._kinematic = mode == "kinematic"
         self.render_mode = render_mode
@@ -971,9 +972,12 @@ class BulletMazeEnv(gym.Env[Any, Any]):
     ) -> None:
         """A ValueError naming the option unless the robot can get from the start into the goal
         circle (see ``bullet_maze.planning.goal_reachable``: the layout's free regions for this
-        radius are computed once, about 30 ms, then each check is a lookup)."""
+        radius are computed once, about 30 ms, then each check is a lookup; the env keeps its
+        ``goal_test``, whose cache lookup hashes every solid)."""
         radius = self.robot.radius
-        if goal_reachable(self.layout, radius, start, goal):
+        if self._goal_test is None:  # the layout and the radius are the env's for its lifetime
+            self._goal_test = goal_test(self.layout, radius)
+        if self._goal_test(start, goal):
             return
         robot = f"a robot of radius {radius:g}"
         if options.get("goal") is None:

@@ -147,7 +147,7 @@ class PhysicsParams:
     resolves the contact and the robot stays where it came to rest (still rewarded -1)."""
     max_turn_substeps: int = 360
     """Upper bound on the physics steps a wheeled robot may spend turning towards a step (at the
-    husky's 60 Hz compass physics a quarter turn takes about 50)."""
+    husky's 40 Hz compass physics a quarter turn takes about 35)."""
     max_drive_substeps: int = 240
     """Upper bound on the physics steps a wheeled robot may spend driving one step."""
 

@@ -25,8 +25,10 @@ The solids are only evaluated near themselves (``geometry.clearance_mask``,
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -87,12 +89,19 @@ def goal_reachable(
     free regions depend only on the layout's solids and the radius and are kept
     (``_free_regions``), so another start or goal in the same layout costs a lookup.
     """
-    regions = _free_regions(_solids(layout), float(robot_radius))
-    return regions.connects(
-        layout.start if start is None else start,
-        layout.goal if goal is None else goal,
-        layout.goal_radius,
+    return goal_test(layout, robot_radius)(
+        layout.start if start is None else start, layout.goal if goal is None else goal
     )
+
+
+def goal_test(
+    layout: MazeLayout, robot_radius: float
+) -> Callable[[tuple[float, float], tuple[float, float]], bool]:
+    """``goal_reachable`` for this layout and radius as a function of the start and the goal, for
+    a caller that asks many times (an env's resets): the lookup of the kept free regions hashes
+    every solid of the layout (0.5 ms at 1,000 solids), which the function does once."""
+    regions = _free_regions(_solids(layout), float(robot_radius))
+    return functools.partial(regions.connects, goal_radius=layout.goal_radius)
 
 
 def _solids(layout: MazeLayout) -> MazeLayout:
@@ -117,6 +126,8 @@ class _Regions:
         self.grid = grid
         labels, _ = ndimage.label(grid.free)
         self.labels = labels.ravel()
+        # The regions of the last goal circle asked about: resets to new starts keep the goal.
+        self._goal: tuple[tuple[float, float], float, frozenset[int]] | None = None
 
     def connects(
         self, start: tuple[float, float], goal: tuple[float, float], goal_radius: float
@@ -125,8 +136,11 @@ class _Regions:
         node = self.grid.start_node(start)
         if node is None:
             return False
-        goals = self.grid.goal_nodes(goal, goal_radius)
-        return bool(np.any(self.labels[goals] == self.labels[node]))
+        kept = self._goal  # read once: the regions are shared by every env of the layout
+        if kept is None or kept[:2] != (goal, goal_radius):
+            regions = self.labels[self.grid.goal_nodes(goal, goal_radius)]
+            kept = self._goal = (goal, goal_radius, frozenset(regions.tolist()))
+        return int(self.labels[node]) in kept[2]
 
 
 @lru_cache(maxsize=8)

@@ -82,3 +82,24 @@ def test_the_lattice_path_succeeds_in_the_simulator(
         assert not info["collision"], f"step {i} of the planned path collided"
         assert terminated == (i == len(limit.actions) - 1)
     assert reward == 5.0
+
+
+def test_goal_test_answers_as_the_regions_do_whatever_the_order_of_goals() -> None:
+    """The env's kept ``goal_test`` (its goal circle's regions remembered between calls) against
+    the regions' labels compared node by node, over starts and goals in a maze with dead ends,
+    switching goals between calls."""
+    from bullet_maze.planning import _free_regions, _solids, goal_test
+
+    layout = load_layout("maze:seed=3,rows=6,cols=6,cell=20")
+    test = goal_test(layout, layout.robot_radius)
+    regions = _free_regions(_solids(layout), float(layout.robot_radius))
+    rng = np.random.default_rng(0)
+    points = [tuple(float(v) for v in rng.uniform(0, layout.arena[0], 2)) for _ in range(40)]
+    answers = set()
+    for start, goal in itertools.product(points[:20], points[20:]):
+        node = regions.grid.start_node(start)
+        goals = regions.grid.goal_nodes(goal, layout.goal_radius)
+        expected = node is not None and bool(np.any(regions.labels[goals] == regions.labels[node]))
+        assert test(start, goal) == expected
+        answers.add(expected)
+    assert answers == {False, True}
