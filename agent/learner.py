@@ -540,10 +540,18 @@ class SMDPAgent:
             kinds.setdefault(agent_class.kind, agent_class)
             pending += agent_class.__subclasses__()
         found = kinds.get(saved.kind)
-        if saved.kind == "tree":
-            from agent.tree_ensemble import tree_agent_class
-
-            found = tree_agent_class(saved.config)
+        config = saved.config
+        if (
+            config.ensemble_trees > 1
+            or config.decision_steps is not None
+            or config.hold_steps is not None
+        ):  # the loop options' class (agent.tree_ensemble), found without importing it
+            seen: list[type[SMDPAgent]] = [SMDPAgent]
+            while seen:
+                agent_class = seen.pop()
+                if vars(agent_class).get("runs_loop_options", False):
+                    found = agent_class
+                seen += agent_class.__subclasses__()
         if found is None or found is SMDPAgent:
             raise saved.fail(f"unknown agent kind {saved.kind!r}")
         if not issubclass(found, cls):

@@ -100,6 +100,7 @@ class TreeEnsembleAgent(TreeAgent):
     kind = "tree"
     """One tree's file is a tree's file; :meth:`SMDPAgent.load` picks this class by its config."""
     ensembles = True
+    runs_loop_options = True
 
     def __init__(
         self,
