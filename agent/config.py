@@ -128,6 +128,37 @@ class TreeConfig:
     information about where the goal is, so the bonus can only steer the greedy policy
     towards the least-tried (leaf, action) pairs; afterwards the learner is the one without
     a bonus. 0: the bonus (if any) applies for ever."""
+    decision_steps: int | None = None
+    """An epoch of an action that is not a held exploratory run ends after this many steps
+    (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
+    action is otherwise kept until the leaf changes, for up to 50 steps: on a task whose state
+    moves through a leaf in a few steps while the right action changes within it (Acrobot's
+    swing, CartPole's balance) the agent re-decides this often, while an exploratory action
+    is still held as long as ``max_epoch_steps`` allows (the maze's reading A). The action
+    after an epoch cut inside the same leaf is the greedy one (the strategy is asked only
+    where it would be without this option: a leaf change, a split, a collision, the end of a
+    held run), so the tabu list does not force a switch at every cut. Runs on
+    :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
+    decision_from_terminal: bool = False
+    """``decision_steps`` applies only once the agent has seen a terminal transition (the goal
+    on MountainCar, Acrobot and a maze; the first fall on CartPole), from the episode after
+    it; before, a greedy action is kept until the leaf changes, as without the option (beyond
+    the paper). Re-deciding at
+    every step before any value has formed left MountainCar's car rocking in the valley
+    (never at the flag in 1,000 episodes on two dev seeds)."""
+    hold_steps: int | None = None
+    """A held exploratory run ends after this many steps (beyond the paper; None:
+    ``max_epoch_steps``, which then caps unheld epochs only). Runs on
+    :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
+    ensemble_trees: int = 1
+    """Several trees whose Q-bar values are averaged, as tile coding averages offset tilings
+    (beyond the paper; :class:`agent.tree_ensemble.TreeEnsembleAgent`): tree k's presplit
+    points move from the midpoints by Sutton's asymmetric offsets ((2d + 1) k / K, mod 1, of
+    half the width in dimension d), every tree learns its own SMDP epochs (and model) from the
+    one trajectory, and the actions follow the mean of the trees' rows. A decision point is
+    any tree's leaf change, so the composite cells are finer than any one tree's leaves.
+    1: one tree (the paper). Needs ``presplit_each_dimension`` or ``initial_depth`` (else the
+    trees start alike and stay alike)."""
 
     def __post_init__(self) -> None:
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)
@@ -140,6 +171,23 @@ class TreeConfig:
             raise ValueError(
                 f"TreeConfig.max_epoch_steps must be a positive int or None, "
                 f"got {self.max_epoch_steps!r}"
+            )
+        if self.hold_steps is not None and (
+            isinstance(self.hold_steps, bool)
+            or not isinstance(self.hold_steps, int)
+            or self.hold_steps < 1
+        ):
+            raise ValueError(
+                f"TreeConfig.hold_steps must be a positive int or None, got {self.hold_steps!r}"
+            )
+        if self.decision_steps is not None and (
+            isinstance(self.decision_steps, bool)
+            or not isinstance(self.decision_steps, int)
+            or self.decision_steps < 1
+        ):
+            raise ValueError(
+                f"TreeConfig.decision_steps must be a positive int or None, "
+                f"got {self.decision_steps!r}"
             )
         if not isinstance(self.split_min_samples, int) or self.split_min_samples < 2:
             raise ValueError(
@@ -164,6 +212,7 @@ class TreeConfig:
             ("initial_depth", 0),
             ("leaves_per_terminal", 0),
             ("model_bonus_terminals", 0),
+            ("ensemble_trees", 1),
         ):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < least:
@@ -172,6 +221,21 @@ class TreeConfig:
             raise TypeError(
                 f"TreeConfig.presplit_each_dimension must be a bool, "
                 f"got {self.presplit_each_dimension!r}"
+            )
+        if self.ensemble_trees > 64:
+            raise ValueError(
+                f"TreeConfig.ensemble_trees must be at most 64, got {self.ensemble_trees!r}"
+            )
+        if self.ensemble_trees > 1 and self.initial_depth == 0 and not self.presplit_each_dimension:
+            raise ValueError(
+                f"TreeConfig.ensemble_trees = {self.ensemble_trees} needs a presplit "
+                "(presplit_each_dimension = True or initial_depth > 0): the offsets move the "
+                "presplit points, and unsplit trees would stay identical"
+            )
+        if self.ensemble_trees > 1 and self.leaves_per_terminal > 0:
+            raise ValueError(
+                "TreeConfig.ensemble_trees > 1 and leaves_per_terminal > 0 cannot be combined "
+                f"(got {self.ensemble_trees} and {self.leaves_per_terminal})"
             )
         if self.initial_depth > 16:
             raise ValueError(

@@ -118,6 +118,11 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "leaves_per_terminal": int,
     # matters only with the model (model_bonus), which turns the loop off
     "model_bonus_terminals": int,
+    # these make the agent a TreeEnsembleAgent, whose class turns the loop off
+    "ensemble_trees": int,
+    "decision_steps": (int, type(None)),
+    "hold_steps": (int, type(None)),
+    "decision_from_terminal": bool,
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""

@@ -69,6 +69,8 @@ class SMDPAgent:
     kind = "smdp"
     accepts_unbounded = False
     """Whether the partition grows unbounded observation dimensions from the data."""
+    ensembles = False
+    """Whether the class runs ``TreeConfig.ensemble_trees`` trees (:mod:`agent.tree_ensemble`)."""
 
     def __init__(
         self,
@@ -87,6 +89,18 @@ class SMDPAgent:
         self.config = config if config is not None else TreeConfig()
         if not isinstance(self.config, TreeConfig):
             raise TypeError(f"config must be a TreeConfig, got {type(self.config).__name__}")
+        if not self.ensembles:
+            for name, off in (
+                ("ensemble_trees", 1),
+                ("decision_steps", None),
+                ("hold_steps", None),
+            ):
+                if getattr(self.config, name) != off:
+                    raise ValueError(
+                        f"TreeConfig.{name} = {getattr(self.config, name)} needs "
+                        f"agent.tree_ensemble.TreeEnsembleAgent, not {type(self).__name__} "
+                        "(agent.tree_ensemble.tree_agent_class(config) picks the class)"
+                    )
         if isinstance(exploration, str):
             exploration = make_exploration(exploration)
         elif not isinstance(exploration, Exploration):
@@ -519,6 +533,9 @@ class SMDPAgent:
             terminals = getattr(self.partition, "terminals", None)
             if terminals is not None:
                 learner["gate"] = {"terminals": terminals}
+            seen = getattr(self, "terminals_seen", None)
+            if seen is not None:
+                learner["loop"] = {"terminals": seen}
             if learner:
                 metadata["learner"] = learner
         arrays: dict[str, Any] = {
@@ -544,6 +561,18 @@ class SMDPAgent:
             kinds.setdefault(agent_class.kind, agent_class)
             pending += agent_class.__subclasses__()
         found = kinds.get(saved.kind)
+        config = saved.config
+        if (
+            config.ensemble_trees > 1
+            or config.decision_steps is not None
+            or config.hold_steps is not None
+        ):  # the loop options' class (agent.tree_ensemble), found without importing it
+            seen: list[type[SMDPAgent]] = [SMDPAgent]
+            while seen:
+                agent_class = seen.pop()
+                if vars(agent_class).get("runs_loop_options", False):
+                    found = agent_class
+                seen += agent_class.__subclasses__()
         if found is None or found is SMDPAgent:
             raise saved.fail(f"unknown agent kind {saved.kind!r}")
         if not issubclass(found, cls):
@@ -594,6 +623,11 @@ class SMDPAgent:
                 if isinstance(terminals, bool) or not isinstance(terminals, int) or terminals < 0:
                     raise ValueError(f"learner gate terminals {terminals!r} is not an int >= 0")
                 setattr(agent.partition, "terminals", terminals)  # noqa: B010 (a gated tree)
+            if "loop" in learner and hasattr(agent, "terminals_seen"):
+                seen = learner["loop"].get("terminals")
+                if isinstance(seen, bool) or not isinstance(seen, int) or seen < 0:
+                    raise ValueError(f"learner loop terminals {seen!r} is not an int >= 0")
+                setattr(agent, "terminals_seen", seen)  # noqa: B010 (TreeEnsembleAgent)
         except (
             TypeError,
             ValueError,

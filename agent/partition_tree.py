@@ -95,12 +95,17 @@ class PartitionTree:
             for leaf in self.leaves():
                 low, high = self._low[leaf][d], self._high[leaf][d]
                 if math.isfinite(low) and math.isfinite(high):
-                    point = 0.5 * (low + high)
+                    point = self._presplit_point(d, low, high)
                 elif low < 0.0 < high:
                     point = 0.0
                 else:
                     continue
                 self.split(leaf, d, point)
+
+    def _presplit_point(self, dim: int, low: float, high: float) -> float:
+        """Where the presplit cuts a bounded dimension: the midpoint (a shifted tree of
+        :mod:`agent.tree_ensemble` moves it)."""
+        return 0.5 * (low + high)
 
     @property
     def n_ids(self) -> int:

@@ -30,6 +30,7 @@ from gymnasium import spaces
 from agent.config import TreeConfig
 from agent.exploration import Exploration, make_exploration
 from agent.tree_agent import TreeAgent
+from agent.tree_ensemble import tree_agent_class
 
 
 @dataclass(frozen=True)
@@ -54,7 +55,8 @@ class Preset:
         bounds: tuple[Sequence[float], Sequence[float]] | None = None,
     ) -> TreeAgent:
         """A new :class:`TreeAgent` with this preset."""
-        return TreeAgent(
+        cls = tree_agent_class(self.config)
+        return cls(
             observation_space, action_space, self.make_exploration(), seed, self.config, bounds
         )
 

@@ -62,7 +62,8 @@ def make_agent(
 ) -> Any:
     """A fresh agent of the strategy for ``env``, its generator seeded with ``seed``;
     ``bounds`` (an ``EnvSpec``'s ``observation_bounds``) is the box its partition covers."""
-    from agent import GridAgent, TreeAgent
+    from agent import GridAgent
+    from agent.tree_ensemble import tree_agent_class
 
     where = f"{config.source}: [strategy {strategy.name!r}]"
     if is_fixed(strategy.agent):
@@ -91,7 +92,7 @@ def make_agent(
                 resolution=resolution,
                 bounds=bounds,
             )
-        return TreeAgent(
+        return tree_agent_class(tree_config)(
             env.observation_space,
             env.action_space,
             exploration=exploration,

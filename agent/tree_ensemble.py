@@ -1,0 +1,285 @@
+"""Several adaptive trees over one trajectory, their Q-bar averaged (beyond the paper).
+
+Tile coding generalises across the boundary of a tile because its tilings are offset: the value
+of a state is the sum of one weight per tiling, and neighbouring states share most of them.
+One adaptive tree has no such sharing: a leaf's value is all it knows, and a state near a leaf
+boundary is as far from the neighbouring leaf's value as one deep inside.
+``TreeConfig(ensemble_trees=K)`` keeps K trees whose presplit points are offset as Sutton's
+tilings are (tree k moves the presplit point of dimension d from the midpoint by
+``((2d + 1) k / K mod 1)`` of half the leaf's width, read in [-1/2, 1/2); an unbounded
+dimension keeps its split at 0), and acts on the mean of their rows,
+
+    Q(s, a) = (1/K) sum_k Q-bar_k(leaf_k(s), a),
+
+as the averaged shifted histogram averages offset histograms. Every tree is a full learner of
+section IV on the same trajectory: its own SMDP epochs (eqs. 9-10), its own split test and, with
+``planning="sweep"``, its own model; tree k bootstraps from its own V-bar. A decision point
+(section IV.A) is any tree's leaf change, so the composite cells, the intersections of the
+trees' leaves, are finer than any one tree's leaves; at a decision point every tree ends its
+epoch. Tree 0 is the agent itself (its presplit is at the midpoints, so K = 1 is the plain tree)
+and carries the exploration strategy: its leaf is the one the strategy's per-leaf state (the
+adaptive epsilon, the tabu list) is kept for, and the strategy sees tree 0's Delta-Q. A held
+exploratory run (``hold_exploration``) is learnt by each tree as one epoch per stretch of its
+own leaves, as :meth:`SMDPAgent._end_held_run` does for one tree.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from os import PathLike
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from gymnasium import spaces
+
+from agent.config import TreeConfig
+from agent.episode_stats import EpisodeStats
+from agent.exploration import Exploration, Greedy
+from agent.exploration.base import greedy_action
+from agent.learner import Bounds, SMDPAgent
+from agent.partition_tree import PartitionTree
+from agent.tree_agent import TreeAgent
+
+
+def presplit_shifts(tree: int, trees: int, dims: int) -> list[float]:
+    """Tree ``tree``'s presplit offsets, one per dimension, in half-widths of the leaf:
+    ``(2d + 1) tree / trees mod 1``, read in [-1/2, 1/2) (Sutton's asymmetric offsets)."""
+    out = []
+    for d in range(dims):
+        f = ((2 * d + 1) * tree % trees) / trees
+        out.append(f if f < 0.5 else f - 1.0)
+    return out
+
+
+class ShiftedPartitionTree(PartitionTree):
+    """A tree whose presplit points are moved from the midpoints by ``shifts`` (half-widths)."""
+
+    def __init__(
+        self, low: list[float], high: list[float], config: TreeConfig, shifts: list[float]
+    ) -> None:
+        self.shifts = list(shifts)
+        super().__init__(low, high, config)
+
+    def _presplit_point(self, dim: int, low: float, high: float) -> float:
+        return 0.5 * (low + high) + self.shifts[dim] * 0.5 * (high - low)
+
+
+class _Member(TreeAgent):
+    """Tree k > 0 of an ensemble: a plain learner with a shifted presplit that never chooses."""
+
+    ensembles = True
+
+    def __init__(self, ensemble: TreeEnsembleAgent, shifts: list[float]) -> None:
+        self._shifts = shifts
+        low, high = ensemble.bounds
+        super().__init__(
+            ensemble.observation_space,
+            ensemble.action_space,
+            Greedy(),
+            ensemble.seed,
+            dataclasses.replace(ensemble.config, ensemble_trees=1),
+            (low, high),
+        )
+
+    def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
+        return ShiftedPartitionTree(low, high, self.config, self._shifts)
+
+
+class TreeEnsembleAgent(TreeAgent):
+    """``TreeConfig.ensemble_trees`` adaptive trees with offset presplits, Q-bar averaged; its
+    loop also runs ``TreeConfig.decision_steps`` and ``hold_steps`` (for one tree too).
+
+    Example::
+
+        config = dataclasses.replace(preset("general").config, ensemble_trees=4)
+        agent = TreeEnsembleAgent(env.observation_space, env.action_space, "adaptive+tabu",
+                                  seed=0, config=config)
+    """
+
+    kind = "tree"
+    """One tree's file is a tree's file; :meth:`SMDPAgent.load` picks this class by its config."""
+    ensembles = True
+    runs_loop_options = True
+
+    def __init__(
+        self,
+        observation_space: spaces.Space,
+        action_space: spaces.Space,
+        exploration: str | Exploration = "adaptive+tabu",
+        seed: int = 0,
+        config: TreeConfig | None = None,
+        bounds: Bounds | None = None,
+    ) -> None:
+        super().__init__(observation_space, action_space, exploration, seed, config, bounds)
+        k = self.config.ensemble_trees
+        dims = len(self.bounds[0])
+        self.members: list[SMDPAgent] = [self]
+        self.members += [_Member(self, presplit_shifts(i, k, dims)) for i in range(1, k)]
+        """Tree 0 (this agent) and the shifted trees."""
+        self.terminals_seen = 0
+        """Terminal transitions seen (``TreeConfig.decision_from_terminal``)."""
+
+    def learn(
+        self,
+        env: Any,
+        episodes: int,
+        callback: Any = None,
+        reset_seed: int | None = None,
+        fast: bool = True,
+    ) -> list[EpisodeStats]:
+        """:meth:`SMDPAgent.learn` on the ensemble's loop (never the compiled one)."""
+        return super().learn(env, episodes, callback, reset_seed, fast=False)
+
+    def mean_row(self, leaves: list[int]) -> list[float]:
+        """The ensemble's Q row: the mean over the trees of each tree's row at its leaf."""
+        rows = [m.q[leaf] for m, leaf in zip(self.members, leaves, strict=True)]
+        if len(rows) == 1:
+            return rows[0]
+        k = float(len(rows))
+        return [sum(column) / k for column in zip(*rows, strict=True)]
+
+    def _leaves(self, x: list[float]) -> list[int]:
+        return [m.partition.leaf_of(x) for m in self.members]
+
+    def predict(self, obs: Any, deterministic: bool = True) -> int:
+        """The greedy action of the mean row (lowest index among ties); with
+        ``deterministic=False`` the exploration strategy chooses on the mean row."""
+        x = np.asarray(obs, dtype=np.float64).reshape(-1).tolist()
+        leaves = self._leaves(x)
+        row = self.mean_row(leaves)
+        if deterministic:
+            return max(range(self.n_actions), key=row.__getitem__)
+        return self.exploration.select(leaves[0], row, self.uniform)
+
+    @property
+    def n_leaves(self) -> int:
+        """Leaves of all the trees together."""
+        return sum(m.partition.n_leaves for m in self.members)
+
+    def save(self, path: str | PathLike[str], policy_only: bool = False) -> Path:
+        """:meth:`SMDPAgent.save` for one tree (``decision_steps`` alone); an ensemble of
+        several trees has no file format yet (a ValueError)."""
+        if len(self.members) == 1:
+            return super().save(path, policy_only)
+        raise ValueError(
+            f"cannot save {path}: a tree ensemble (TreeConfig.ensemble_trees = "
+            f"{self.config.ensemble_trees}) has no file format yet"
+        )
+
+    def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:
+        """The reference loop (:meth:`SMDPAgent._run_episode`) over every tree at once."""
+        cfg = self.config
+        members = self.members
+        strategy = self.exploration
+        rng = self.uniform
+        cap = cfg.max_epoch_steps if cfg.max_epoch_steps is not None else 1 << 62
+        hold_cap = cap if cfg.hold_steps is None else cfg.hold_steps
+        redecide = cfg.decision_steps is not None and (
+            self.terminals_seen > 0 or not cfg.decision_from_terminal
+        )
+        decide = cfg.decision_steps if redecide and cfg.decision_steps is not None else cap
+        key = cfg.collision_key
+        end_on_collision = cfg.end_epoch_on_collision
+        hold_exploration = cfg.hold_exploration
+
+        x = [float(v) for v in obs]
+        leaves = self._leaves(x)
+        action = strategy.select(leaves[0], self.mean_row(leaves), rng)
+        hold = hold_exploration and strategy.explored
+        eps_sum = strategy.epsilon(leaves[0])
+        xs: list[list[float]] = []
+        rs: list[float] = []
+        held: list[list[int]] = [[] for _ in members]
+        current = list(leaves)
+        steps = collisions = 0
+        epochs = 1
+        total = 0.0
+        terminated = truncated = False
+        info: dict[str, Any] = {}
+        while True:
+            obs, reward, terminated, truncated, info = env.step(action)
+            r = float(reward)
+            xs.append(x)
+            rs.append(r)
+            if hold:
+                for run, leaf in zip(held, current, strict=True):
+                    run.append(leaf)
+            steps += 1
+            total += r
+            x = [float(v) for v in obs]
+            collided = bool(info.get(key, False))
+            if collided:
+                collisions += 1
+            nxt = self._leaves(x)
+            current = nxt
+            done = terminated or truncated
+            if (
+                done
+                or (nxt != leaves and not hold)
+                or len(rs) >= (hold_cap if hold else decide)
+                or (collided and end_on_collision)
+            ):
+                # decision_steps: an unheld epoch cut inside the same cell continues greedily
+                inside = (
+                    redecide and not hold and nxt == leaves and not (collided and end_on_collision)
+                )
+                splits = []
+                for i, m in enumerate(members):
+                    if hold:
+                        split = m._end_held_run(action, xs, rs, held[i], x, terminated)
+                    else:
+                        bootstrap = 0.0 if terminated else max(m.q[nxt[i]])
+                        split = m._end_epoch(leaves[i], action, xs, rs, bootstrap, x, terminated)
+                    splits.append(split)
+                if done:
+                    break
+                leaves = [
+                    m.partition.leaf_of(x) if split else leaf
+                    for m, split, leaf in zip(members, splits, nxt, strict=True)
+                ]
+                current = list(leaves)
+                held = [[] for _ in members]
+                if inside and not any(splits):
+                    action = greedy_action(self.mean_row(leaves), rng)
+                    hold = False
+                else:
+                    action = strategy.select(leaves[0], self.mean_row(leaves), rng)
+                    hold = hold_exploration and strategy.explored
+                eps_sum += strategy.epsilon(leaves[0])
+                epochs += 1
+                xs = []
+                rs = []
+        if terminated:
+            self.terminals_seen += 1
+        success = bool(info["is_success"]) if "is_success" in info else bool(terminated)
+        strategy.on_episode_end(success)
+        for m in members[1:]:
+            m.exploration.on_episode_end(success)
+            m.episodes_done += 1
+        stats = EpisodeStats(
+            episode=self.episodes_done,
+            steps=steps,
+            episode_return=total,
+            success=success,
+            truncated=bool(truncated) and not terminated,
+            leaves=self.n_leaves,
+            collisions=collisions,
+            epochs=epochs,
+            mean_epsilon=eps_sum / epochs,
+        )
+        self.episodes_done += 1
+        return stats
+
+
+def tree_agent_class(config: TreeConfig) -> type[TreeAgent]:
+    """The tree agent a configuration asks for: :class:`TreeEnsembleAgent` when
+    ``ensemble_trees > 1`` or ``decision_steps`` or ``hold_steps`` is set (its loop runs
+    them), else :class:`TreeAgent`."""
+    if (
+        config.ensemble_trees > 1
+        or config.decision_steps is not None
+        or config.hold_steps is not None
+    ):
+        return TreeEnsembleAgent
+    return TreeAgent

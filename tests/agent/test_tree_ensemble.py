@@ -1,0 +1,212 @@
+"""Offset trees with averaged Q-bar (``TreeConfig.ensemble_trees``, beyond the paper)."""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium import spaces
+
+from agent import TreeAgent, TreeConfig, preset
+from agent.tree_ensemble import (
+    ShiftedPartitionTree,
+    TreeEnsembleAgent,
+    presplit_shifts,
+    tree_agent_class,
+)
+
+
+class Walk(gym.Env[np.ndarray, int]):
+    """x starts at 0.02 and moves 0.1 a step (action 1) or 0.05 (action 0); -1 a step; the
+    episode ends at x >= 1."""
+
+    observation_space = spaces.Box(0.0, 1.0, (1,), dtype=np.float64)
+    action_space = spaces.Discrete(2)
+
+    def reset(self, *, seed: int | None = None, options: Any = None) -> tuple[np.ndarray, dict]:
+        super().reset(seed=seed)
+        self.x = 0.02
+        return np.array([self.x]), {}
+
+    def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict]:
+        self.x += 0.1 if action == 1 else 0.05
+        return np.array([min(self.x, 1.0)]), -1.0, self.x >= 1.0, False, {}
+
+
+def plain_config(**changes: Any) -> TreeConfig:
+    """No learned splits, no model, no hold: epochs and updates can be counted by hand."""
+    base = TreeConfig(
+        split_min_samples=10_000,
+        presplit_each_dimension=True,
+        hold_exploration=False,
+        max_epoch_steps=None,
+        q_init=0.0,
+        alpha=0.5,
+    )
+    return dataclasses.replace(base, **changes)
+
+
+def test_offsets_are_suttons_asymmetric_ones_in_half_widths() -> None:
+    # (2d + 1) k / K mod 1, read in [-1/2, 1/2): K = 4, two dimensions
+    assert presplit_shifts(0, 4, 2) == [0.0, 0.0]
+    assert presplit_shifts(1, 4, 2) == [0.25, -0.25]
+    assert presplit_shifts(2, 4, 2) == [-0.5, -0.5]
+    assert presplit_shifts(3, 4, 2) == [-0.25, 0.25]
+
+
+def test_a_shifted_tree_presplits_off_the_midpoints() -> None:
+    tree = ShiftedPartitionTree([0.0, 0.0], [1.0, 1.0], plain_config(), [0.25, -0.25])
+    # dimension 0 at 0.5 + 0.25 x 0.5 = 0.625, dimension 1 at 0.5 - 0.25 x 0.5 = 0.375
+    assert tree.n_leaves == 4
+    assert tree.leaf_of([0.62, 0.37]) != tree.leaf_of([0.63, 0.37])
+    assert tree.leaf_of([0.62, 0.37]) != tree.leaf_of([0.62, 0.38])
+    assert tree.leaf_of([0.3, 0.1]) == tree.leaf_of([0.6, 0.3])
+
+
+def test_any_trees_leaf_change_is_a_decision_point_and_every_tree_learns_it() -> None:
+    # K = 2 on [0, 1]: tree 0 presplits at 0.5, tree 1 (shift -1/2) at 0.25. Action 0 starts
+    # so bad that greedy always takes action 1: x = 0.02, 0.12, ..., 0.92, then 1.02 (the end).
+    env = Walk()
+    agent = TreeEnsembleAgent(
+        env.observation_space, env.action_space, "greedy", 0, plain_config(ensemble_trees=2)
+    )
+    tree0, tree1 = agent.members
+    b = 1e-9
+    for member in agent.members:
+        for row in member.q:
+            row[:] = [-1e6, b]
+    stats = agent.learn(env, 1, reset_seed=0)[0]
+    assert stats.steps == 10
+    assert stats.epochs == 3  # inputs 0.02-0.22 | 0.32-0.42 | 0.52-0.92: tree 1, then tree 0
+    left0, right0 = tree0.partition.leaf_of([0.1]), tree0.partition.leaf_of([0.6])
+    left1, right1 = tree1.partition.leaf_of([0.1]), tree1.partition.leaf_of([0.3])
+    assert tree0.partition.leaf_of([0.3]) == left0
+    g = 0.99
+    three = [-1 + g * (-1 + g * (-1 + g * b)), -1 + g * (-1 + g * b), -1 + g * b]  # eq. (9)
+    two = [-1 + g * (-1 + g * b), -1 + g * b]
+    q1 = 0.5 * b + 0.5 * sum(three) / 3  # eq. (10), alpha 0.5
+    # tree 0's left leaf learnt two epochs (its own leaf did not change at 0.32)
+    assert tree0.visits[left0][1] == 2
+    assert tree0.q[left0][1] == pytest.approx(0.5 * q1 + 0.5 * sum(two) / 2, abs=1e-12)
+    assert tree0.visits[right0][1] == 1
+    # tree 1's left leaf learnt the first epoch only, its right leaf the other two
+    assert tree1.visits[left1][1] == 1
+    assert tree1.q[left1][1] == pytest.approx(q1, abs=1e-12)
+    assert tree1.visits[right1][1] == 2
+
+
+def test_actions_follow_the_mean_of_the_trees_rows() -> None:
+    env = Walk()
+    agent = TreeEnsembleAgent(
+        env.observation_space, env.action_space, "greedy", 0, plain_config(ensemble_trees=2)
+    )
+    tree0, tree1 = agent.members
+    leaf0, leaf1 = tree0.partition.leaf_of([0.1]), tree1.partition.leaf_of([0.1])
+    tree0.q[leaf0] = [1.0, 0.0]
+    tree1.q[leaf1] = [-3.0, 0.0]
+    assert agent.mean_row([leaf0, leaf1]) == [-1.0, 0.0]
+    assert agent.predict(np.array([0.1])) == 1  # tree 0 alone would pick action 0
+
+
+def test_one_tree_is_the_plain_tree_bit_for_bit() -> None:
+    env = gym.make("CartPole-v1")
+    config = preset("general").config
+    plain = TreeAgent(env.observation_space, env.action_space, "adaptive+tabu", 3, config)
+    one = TreeEnsembleAgent(env.observation_space, env.action_space, "adaptive+tabu", 3, config)
+    a = plain.learn(env, 25, reset_seed=3)
+    b = one.learn(env, 25, reset_seed=3)
+    assert a == b
+    assert plain.q == one.q
+    env.close()
+
+
+def test_bad_ensembles_are_refused_with_the_field_named() -> None:
+    with pytest.raises(ValueError, match="ensemble_trees = 2 needs a presplit"):
+        TreeConfig(ensemble_trees=2)
+    with pytest.raises(ValueError, match="ensemble_trees must be an int >= 1"):
+        TreeConfig(ensemble_trees=0)
+    with pytest.raises(ValueError, match="at most 64"):
+        TreeConfig(ensemble_trees=65, presplit_each_dimension=True)
+    with pytest.raises(ValueError, match="cannot be combined"):
+        TreeConfig(ensemble_trees=2, presplit_each_dimension=True, leaves_per_terminal=4)
+    config = plain_config(ensemble_trees=2)
+    env = Walk()
+    with pytest.raises(ValueError, match=r"needs agent\.tree_ensemble\.TreeEnsembleAgent"):
+        TreeAgent(env.observation_space, env.action_space, "greedy", 0, config)
+    assert tree_agent_class(config) is TreeEnsembleAgent
+    assert tree_agent_class(plain_config()) is TreeAgent
+    agent = TreeEnsembleAgent(env.observation_space, env.action_space, "greedy", 0, config)
+    with pytest.raises(ValueError, match="has no file format yet"):
+        agent.save("x.npz")
+
+
+def test_decision_steps_cut_greedy_epochs_but_not_held_runs(tmp_path: Any) -> None:
+    env = Walk()
+    config = plain_config(decision_steps=2)
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    assert type(agent) is TreeEnsembleAgent
+    for row in agent.q:
+        row[:] = [-1e6, 1e-9]
+    stats = agent.learn(env, 1, reset_seed=0)[0]
+    # inputs 0.02 0.12 | 0.22 0.32 | 0.42 | (the leaf changes) 0.52 0.62 | 0.72 0.82 | 0.92
+    assert (stats.steps, stats.epochs) == (10, 6)
+    # an exploratory action is still held for max_epoch_steps (None: to the episode's end)
+    held = dataclasses.replace(config, hold_exploration=True, decision_steps=1)
+    explorer = TreeEnsembleAgent(env.observation_space, env.action_space, "epsilon-greedy", 0, held)
+    explorer.exploration._epsilon = 1.0  # type: ignore[attr-defined]
+    stats = explorer.learn(env, 1, reset_seed=0)[0]
+    assert stats.epochs == 1
+    assert stats.steps >= 10
+    # one tree on this loop saves and loads like a TreeAgent
+    path = agent.save(tmp_path / "agent.npz")
+    loaded = TreeAgent.load(path)
+    assert type(loaded) is TreeEnsembleAgent
+    assert loaded.q == agent.q
+    assert loaded.config.decision_steps == 2
+    with pytest.raises(ValueError, match="decision_steps must be a positive int or None"):
+        TreeConfig(decision_steps=0)
+    with pytest.raises(ValueError, match=r"decision_steps = 2 needs agent\.tree_ensemble"):
+        TreeAgent(env.observation_space, env.action_space, "greedy", 0, config)
+
+
+def test_a_cut_inside_the_leaf_continues_greedily_past_the_tabu_list() -> None:
+    # greedy + tabu: every epoch lists (leaf, action). Asked at every one-step cut, the strategy
+    # would switch to action 0 (0.05 a step) each second step; the cut keeps the greedy action 1.
+    env = Walk()
+    config = plain_config(decision_steps=1)
+    agent = TreeEnsembleAgent(env.observation_space, env.action_space, "greedy+tabu", 0, config)
+    for row in agent.q:
+        row[:] = [-1e6, 1e-9]
+    stats = agent.learn(env, 1, reset_seed=0)[0]
+    assert (stats.steps, stats.epochs) == (10, 10)
+
+
+def test_hold_steps_cap_a_held_run_only() -> None:
+    env = Walk()
+    config = plain_config(hold_exploration=True, max_epoch_steps=None, hold_steps=3)
+    explorer = tree_agent_class(config)(
+        env.observation_space, env.action_space, "epsilon-greedy", 0, config
+    )
+    explorer.exploration._epsilon = 1.0  # type: ignore[attr-defined]
+    stats = explorer.learn(env, 1, reset_seed=0)[0]
+    # every choice is random and held for 3 steps (the last run may be cut by the end)
+    assert stats.epochs == -(-stats.steps // 3)
+    with pytest.raises(ValueError, match="hold_steps must be a positive int or None"):
+        TreeConfig(hold_steps=0)
+
+
+def test_decisions_from_the_first_terminal_on(tmp_path: Any) -> None:
+    env = Walk()
+    config = plain_config(decision_steps=2, decision_from_terminal=True)
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    for row in agent.q:
+        row[:] = [-1e6, 1e-9]
+    first, second = agent.learn(env, 2, reset_seed=0)
+    assert first.epochs == 2  # no terminal seen yet: the leaf change at 0.5 only
+    assert second.epochs == 6  # then every second step as well
+    assert agent.terminals_seen == 2
+    loaded = TreeAgent.load(agent.save(tmp_path / "agent.npz"))
+    assert loaded.terminals_seen == 2  # type: ignore[attr-defined]
