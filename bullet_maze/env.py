@@ -346,7 +346,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
                 validate_layout(self.layout, self.robot.radius)
             self.world = World(self._client, self.layout, self.robot.radius)
             self.lidar = (
-                Lidar(self._client, lidar_params, self.robot.radius)
+                Lidar(self.world.pieces(), lidar_params, self.robot.radius)
                 if observation.endswith("lidar")
                 else None
             )
@@ -585,14 +585,17 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         return None
 
     def close(self) -> None:
-        """Disconnect the pybullet clients (the world's and its query index's, if it has one);
-        calling it again does nothing."""
+        """Disconnect the pybullet clients (the world's, and its query index's and the lidar
+        scene's if it has them); calling it again does nothing."""
         client = getattr(self, "_client", -1)
         if client >= 0:
             self._client = -1
             world = getattr(self, "world", None)
             if world is not None:
                 world.close()
+            lidar = getattr(self, "lidar", None)
+            if lidar is not None:
+                lidar.close()
             try:
                 pb.disconnect(physicsClientId=client)
             except pb.error:  # already gone with its server

@@ -103,7 +103,7 @@ COLOURS = {
 _IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
 
-class _Piece(NamedTuple):
+class Piece(NamedTuple):
     """One solid's shape: a box (``radius`` 0) or a cylinder (``size`` 0), in maze units."""
 
     center: tuple[float, float]
@@ -132,7 +132,7 @@ class World:
         self._index = (
             None
             if self._single is not None
-            else _RegionIndex(self._pieces(), robot_radius, layout.arena)
+            else _RegionIndex(self.pieces(), robot_radius, layout.arena)
         )
 
     def _build_ground(self) -> int:
@@ -151,18 +151,20 @@ class World:
         pb.changeDynamics(ground, -1, lateralFriction=GROUND_FRICTION, physicsClientId=c)
         return ground
 
-    def _pieces(self) -> list[_Piece]:
+    def pieces(self) -> list[Piece]:
+        """The solids in maze units, what the bodies are built from: the four arena walls
+        (outside ``[0, w] x [0, h]``), then the layout's walls and its obstacles in file order."""
         w, h = self.layout.arena
         t = BOUNDARY_THICKNESS
         arena = [  # outside [0, w] x [0, h]
-            _Piece((w / 2, -t / 2), (w + 2 * t, t), 0.0, "wall"),
-            _Piece((w / 2, h + t / 2), (w + 2 * t, t), 0.0, "wall"),
-            _Piece((-t / 2, h / 2), (t, h), 0.0, "wall"),
-            _Piece((w + t / 2, h / 2), (t, h), 0.0, "wall"),
+            Piece((w / 2, -t / 2), (w + 2 * t, t), 0.0, "wall"),
+            Piece((w / 2, h + t / 2), (w + 2 * t, t), 0.0, "wall"),
+            Piece((-t / 2, h / 2), (t, h), 0.0, "wall"),
+            Piece((w + t / 2, h / 2), (t, h), 0.0, "wall"),
         ]
-        walls = [_Piece(wall.center, wall.size, 0.0, "wall") for wall in self.layout.walls]
+        walls = [Piece(wall.center, wall.size, 0.0, "wall") for wall in self.layout.walls]
         obstacles = [
-            _Piece(obstacle.center, (0.0, 0.0), obstacle.radius, "obstacle")
+            Piece(obstacle.center, (0.0, 0.0), obstacle.radius, "obstacle")
             for obstacle in self.layout.obstacles
         ]
         return arena + walls + obstacles
@@ -171,7 +173,7 @@ class World:
         """The solid bodies: one compound when every piece fits in one (boxes first, as
         ``_pieces`` orders them), else the four arena walls one body each and the rest in
         URDF compounds of nearby pieces."""
-        pieces = self._pieces()
+        pieces = self.pieces()
         if len(pieces) <= COMPOUND_CHILDREN:
             return [self._build_compound(pieces)]
         arena = [self._build_compound([piece]) for piece in pieces[:4]]
@@ -185,7 +187,7 @@ class World:
             pb.changeDynamics(body, -1, collisionMargin=0.0, physicsClientId=self.client)
         return arena + bodies
 
-    def _build_compound(self, pieces: list[_Piece]) -> int:
+    def _build_compound(self, pieces: list[Piece]) -> int:
         s, c = METRES_PER_UNIT, self.client
         z = WALL_HEIGHT / 2
         types, extents, radii, lengths, positions, colours = [], [], [], [], [], []
@@ -497,7 +499,7 @@ class _RegionIndex:
     docstring)."""
 
     def __init__(
-        self, pieces: list[_Piece], robot_radius: float, arena: tuple[float, float]
+        self, pieces: list[Piece], robot_radius: float, arena: tuple[float, float]
     ) -> None:
         self.pieces = pieces
         half = np.array(
@@ -509,7 +511,7 @@ class _RegionIndex:
         # piece whose bounding box is farther than this from the square.
         self._margin = SAFE_REACH + CONTACT_TOLERANCE + robot_radius + REGION_MARGIN
         self.client = pb.connect(pb.DIRECT)
-        self._finalizer = weakref.finalize(self, _disconnect, self.client)
+        self._finalizer = weakref.finalize(self, disconnect_client, self.client)
         s, c = METRES_PER_UNIT, self.client
         # The footprint is a collision shape, not a body: a query places it itself. Moving a probe
         # body costs a broadphase update that grows with the bodies in the client (0.9 us alone,
@@ -558,12 +560,13 @@ class _RegionIndex:
         self._finalizer()
 
 
-def _disconnect(client: int) -> None:
+def disconnect_client(client: int) -> None:
+    """Disconnect a client of this package's own (a query index, a ray scene), if still there."""
     with contextlib.suppress(pb.error):  # already gone with its server
         pb.disconnect(physicsClientId=client)
 
 
-def _load_urdf(client: int, pieces: list[_Piece], visual: bool) -> int:
+def _load_urdf(client: int, pieces: list[Piece], visual: bool) -> int:
     """A static rigid body of one link whose compound holds the pieces (``_urdf``)."""
     fd, path = tempfile.mkstemp(suffix=".urdf")
     try:
@@ -580,7 +583,7 @@ def _load_urdf(client: int, pieces: list[_Piece], visual: bool) -> int:
         os.unlink(path)
 
 
-def _urdf(pieces: list[_Piece], visual: bool) -> str:
+def _urdf(pieces: list[Piece], visual: bool) -> str:
     """A URDF of one static link whose collision elements are the pieces, exactly as
     ``World._build_compound`` makes them (boxes first; the same sizes in metres, written so that
     they read back to the same doubles: queries answer bit for bit as on that compound), with a
@@ -620,7 +623,7 @@ def _urdf(pieces: list[_Piece], visual: bool) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _nearby_groups(pieces: list[_Piece], most: int) -> list[list[_Piece]]:
+def _nearby_groups(pieces: list[Piece], most: int) -> list[list[Piece]]:
     """Split pieces into groups of at most ``most`` by halving along the longer side of their
     centres' spread, so that each group's bounding box is small."""
     if len(pieces) <= most:

@@ -10,6 +10,8 @@ import numpy as np
 import pytest
 from gymnasium import spaces
 
+from agent import TreeAgent
+
 
 class Corridor(gym.Env[np.ndarray, int]):
     """A point in ``[0, 1]^2`` moved by up/down/left/right steps of ``step`` plus Gaussian noise.
@@ -61,3 +63,21 @@ class Corridor(gym.Env[np.ndarray, int]):
 def make_corridor() -> Callable[..., Corridor]:
     """Factory of :class:`Corridor` envs (keyword arguments as its constructor)."""
     return Corridor
+
+
+@pytest.fixture
+def train_corridor(
+    make_corridor: Callable[..., Corridor],
+) -> Callable[..., tuple[TreeAgent, list[Any]]]:
+    """``train(config, episodes, **env)``: a ``TreeAgent`` (epsilon-greedy, seed 0) of ``config``
+    trained on a :class:`Corridor` of ``env`` for ``episodes`` (reset seed 0); returns the agent
+    and its history."""
+
+    def train(config: Any, episodes: int, **env: Any) -> tuple[TreeAgent, list[Any]]:
+        corridor = make_corridor(**env)
+        agent = TreeAgent(
+            corridor.observation_space, corridor.action_space, "epsilon-greedy", 0, config
+        )
+        return agent, agent.learn(corridor, episodes, reset_seed=0)
+
+    return train

@@ -25,16 +25,6 @@ SWEEP = TreeConfig(
 UNTIL_GOAL = dataclasses.replace(SWEEP, model_bonus_terminals=1)
 
 
-def trained(
-    make_corridor: Callable[..., Any], config: TreeConfig, episodes: int, **env: Any
-) -> tuple[TreeAgent, list[Any]]:
-    corridor = make_corridor(**env)
-    agent = TreeAgent(
-        corridor.observation_space, corridor.action_space, "epsilon-greedy", 0, config
-    )
-    return agent, agent.learn(corridor, episodes, reset_seed=0)
-
-
 def test_the_default_is_off_and_the_general_preset_leaves_it_off() -> None:
     assert TreeConfig().model_bonus_terminals == 0
     assert preset("paper").config.model_bonus_terminals == 0
@@ -47,10 +37,10 @@ def test_a_bad_count_is_refused_by_name(bad: Any) -> None:
         TreeConfig(model_bonus_terminals=bad)
 
 
-def test_without_a_goal_the_bonus_applies_as_always(make_corridor: Callable[..., Any]) -> None:
+def test_without_a_goal_the_bonus_applies_as_always(train_corridor: Callable[..., Any]) -> None:
     unreachable = {"goal": (0.95, 0.95), "goal_radius": 0.01}
-    a, history_a = trained(make_corridor, SWEEP, 5, **unreachable)
-    b, history_b = trained(make_corridor, UNTIL_GOAL, 5, **unreachable)
+    a, history_a = train_corridor(SWEEP, 5, **unreachable)
+    b, history_b = train_corridor(UNTIL_GOAL, 5, **unreachable)
     assert not any(s.success for s in history_b)
     assert [s.steps for s in history_a] == [s.steps for s in history_b]
     assert a.q == b.q
@@ -59,9 +49,9 @@ def test_without_a_goal_the_bonus_applies_as_always(make_corridor: Callable[...,
     assert b._bonus_function() is not None
 
 
-def test_the_bonus_ends_at_the_first_goal(make_corridor: Callable[..., Any]) -> None:
-    always, history_always = trained(make_corridor, SWEEP, 30)
-    until, history_until = trained(make_corridor, UNTIL_GOAL, 30)
+def test_the_bonus_ends_at_the_first_goal(train_corridor: Callable[..., Any]) -> None:
+    always, history_always = train_corridor(SWEEP, 30)
+    until, history_until = train_corridor(UNTIL_GOAL, 30)
     first = next(i for i, s in enumerate(history_until) if s.success)
     # the same agent up to the end of the first successful episode
     same = [s.steps for s in history_until[: first + 1]]
@@ -79,17 +69,17 @@ def test_the_bonus_ends_at_the_first_goal(make_corridor: Callable[..., Any]) -> 
 
 
 def test_the_bonus_steers_the_greedy_policy_before_the_goal(
-    make_corridor: Callable[..., Any],
+    train_corridor: Callable[..., Any],
 ) -> None:
-    _none, history_none = trained(make_corridor, dataclasses.replace(SWEEP, model_bonus=0.0), 8)
-    _until, history_until = trained(make_corridor, UNTIL_GOAL, 8)
+    _none, history_none = train_corridor(dataclasses.replace(SWEEP, model_bonus=0.0), 8)
+    _until, history_until = train_corridor(UNTIL_GOAL, 8)
     assert [s.steps for s in history_none] != [s.steps for s in history_until]
 
 
 def test_the_count_is_saved_and_learning_continues_the_same(
-    make_corridor: Callable[..., Any], tmp_path: Path
+    make_corridor: Callable[..., Any], train_corridor: Callable[..., Any], tmp_path: Path
 ) -> None:
-    agent, _history = trained(make_corridor, UNTIL_GOAL, 15)
+    agent, _history = train_corridor(UNTIL_GOAL, 15)
     assert agent.model is not None
     assert agent.model.terminals > 0
     loaded = TreeAgent.load(agent.save(tmp_path / "until"))

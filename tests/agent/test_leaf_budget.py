@@ -21,17 +21,6 @@ from agent.partition_tree import GatedPartitionTree, PartitionTree
 FINE = TreeConfig(split_min_samples=20, split_min_variance=0.0, max_epoch_steps=10)
 
 
-def trained(
-    make_corridor: Callable[..., Any], config: TreeConfig, episodes: int, **env: Any
-) -> tuple[TreeAgent, list[Any]]:
-    corridor = make_corridor(**env)
-    agent = TreeAgent(
-        corridor.observation_space, corridor.action_space, "epsilon-greedy", 0, config
-    )
-    history = agent.learn(corridor, episodes, reset_seed=0)
-    return agent, history
-
-
 def test_the_default_keeps_the_papers_tree() -> None:
     agent = TreeAgent(*_spaces(), "epsilon-greedy", 0, TreeConfig())
     assert type(agent.partition) is PartitionTree
@@ -44,19 +33,19 @@ def test_a_bad_budget_is_refused_by_name(bad: Any) -> None:
         TreeConfig(leaves_per_terminal=bad)
 
 
-def test_no_split_before_the_first_terminal_transition(make_corridor: Callable[..., Any]) -> None:
+def test_no_split_before_the_first_terminal_transition(train_corridor: Callable[..., Any]) -> None:
     # the goal is out of reach in 200 steps: no episode terminates
     config = dataclasses.replace(FINE, leaves_per_terminal=8)
-    agent, history = trained(make_corridor, config, 5, goal=(0.95, 0.95), goal_radius=0.01)
+    agent, history = train_corridor(config, 5, goal=(0.95, 0.95), goal_radius=0.01)
     assert not any(s.success for s in history)
     assert agent.n_leaves == 1
-    ungated, _ = trained(make_corridor, FINE, 5, goal=(0.95, 0.95), goal_radius=0.01)
+    ungated, _ = train_corridor(FINE, 5, goal=(0.95, 0.95), goal_radius=0.01)
     assert ungated.n_leaves > 1  # the same run without the gate splits
 
 
-def test_the_budget_grows_by_its_step_per_terminal(make_corridor: Callable[..., Any]) -> None:
+def test_the_budget_grows_by_its_step_per_terminal(train_corridor: Callable[..., Any]) -> None:
     config = dataclasses.replace(FINE, leaves_per_terminal=2)
-    agent, history = trained(make_corridor, config, 40)
+    agent, history = train_corridor(config, 40)
     partition = agent.partition
     assert isinstance(partition, GatedPartitionTree)
     goals = sum(s.success for s in history)
@@ -74,10 +63,10 @@ def test_the_presplit_is_the_budgets_base() -> None:
 
 
 def test_the_count_is_saved_and_learning_continues_the_same(
-    make_corridor: Callable[..., Any], tmp_path: Path
+    make_corridor: Callable[..., Any], train_corridor: Callable[..., Any], tmp_path: Path
 ) -> None:
     config = dataclasses.replace(FINE, leaves_per_terminal=2)
-    agent, _ = trained(make_corridor, config, 20)
+    agent, _ = train_corridor(config, 20)
     loaded = TreeAgent.load(agent.save(tmp_path / "gated"))
     assert isinstance(loaded.partition, GatedPartitionTree)
     assert loaded.partition.terminals == agent.partition.terminals  # type: ignore[attr-defined]
@@ -108,10 +97,10 @@ def _spaces() -> tuple[Any, Any]:
 
 @pytest.mark.parametrize("bad", [-1, 2.5, True, "3", None])
 def test_a_tampered_terminal_count_is_refused_by_name(
-    make_corridor: Callable[..., Any], tmp_path: Path, bad: Any
+    train_corridor: Callable[..., Any], tmp_path: Path, bad: Any
 ) -> None:
     config = dataclasses.replace(FINE, leaves_per_terminal=2)
-    agent, _ = trained(make_corridor, config, 5)
+    agent, _ = train_corridor(config, 5)
     path = agent.save(tmp_path / "gated")
     with np.load(path, allow_pickle=False) as data:
         arrays = {name: data[name].copy() for name in data.files}
