@@ -20,6 +20,7 @@ never move, so the scene is built once, from the same pieces as the simulation's
 
 from __future__ import annotations
 
+import logging
 import math
 import weakref
 from collections.abc import Sequence
@@ -29,6 +30,8 @@ import pybullet as pb
 
 from bullet_maze.params import METRES_PER_UNIT, WALL_HEIGHT
 from bullet_maze.world import Piece, disconnect_client
+
+logger = logging.getLogger(__name__)
 
 MESH_TOLERANCE = 1e-3
 """Maze units (0.1 mm at the default scale): the farthest a cylinder's mesh face lies from the
@@ -43,6 +46,15 @@ edge tolerance), so a box's faces are cut into pieces of at most this length: a 
 box's corner by more than ``1e-4 * MAX_SEGMENT`` units misses it (a whole 15 m face let rays
 through 1.5 mm beyond its corner count as hits)."""
 
+MAX_SCENE_SIDES = 200_000
+"""Most sides (vertical faces of two triangles) of a scene's distinct meshes in all: about 240 MB,
+since pybullet keeps about 1.2 KB a side (measured: 1,000 cylinders of distinct radii, 99,653
+sides, 120 MB). Equal solids share one mesh. A layout that would need more (thousands of large
+cylinders of distinct radii, or long walls) gets coarser meshes, with a logged warning: the
+coarsening ``k > 1`` that fits multiplies ``MAX_SEGMENT`` by ``k`` and ``MESH_TOLERANCE`` by
+``k ** 2`` (both kinds then need about ``1 / k`` as many sides); ``RayScene.tolerance`` and
+``RayScene.segment`` say what the scene holds."""
+
 MIN_SIDES = 16
 """Fewest sides of a cylinder's mesh, for the smallest radii."""
 
@@ -52,16 +64,33 @@ above about 100,000 units, far beyond the largest arena, would have faces farthe
 ``MESH_TOLERANCE`` from the surface."""
 
 
-def cylinder_sides(radius: float) -> int:
+def cylinder_sides(radius: float, tolerance: float = MESH_TOLERANCE) -> int:
     """Sides of the prism standing for a cylinder of ``radius`` maze units: the fewest that keep
-    every face within ``MESH_TOLERANCE`` of the surface, in ``[MIN_SIDES, MAX_SIDES]``.
+    every face within ``tolerance`` of the surface, in ``[MIN_SIDES, MAX_SIDES]``.
 
     With the vertices at ``R_v = 2 R / (1 + cos(pi / n))`` the faces' midpoints lie at
     ``R_v cos(pi / n)``, so the radial error is at most
     ``R (1 - cos(pi / n)) / (1 + cos(pi / n)) = R tan(pi / (2 n))^2`` (about ``R (pi / n)^2 / 4``).
     """
-    sides = math.ceil(math.pi / (2.0 * math.atan(math.sqrt(MESH_TOLERANCE / radius))))
+    sides = math.ceil(math.pi / (2.0 * math.atan(math.sqrt(tolerance / radius))))
     return min(max(sides, MIN_SIDES), MAX_SIDES)
+
+
+def _section(key: tuple[str, float, float], tolerance: float, segment: float) -> np.ndarray:
+    """The horizontal section of a box ``("box", sx, sy)`` or a cylinder ``("cylinder", r, 0)``
+    (maze units) as its mesh's corners in order, in metres about its centre, no edge longer than
+    ``segment`` units."""
+    s = METRES_PER_UNIT
+    kind, a, b = key
+    if kind == "cylinder":
+        n = cylinder_sides(a, tolerance)
+        out = 2.0 * a / (1.0 + math.cos(math.pi / n)) * s
+        angles = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
+        corners = np.column_stack((np.cos(angles), np.sin(angles))) * out
+    else:
+        hx, hy = a / 2 * s, b / 2 * s
+        corners = np.array([(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)])
+    return _subdivided(corners, segment * s)
 
 
 def _subdivided(corners: np.ndarray, longest: float) -> np.ndarray:
@@ -95,25 +124,40 @@ class RayScene:
     docstring. ``cast`` answers a batch of rays in metres."""
 
     def __init__(self, pieces: Sequence[Piece]) -> None:
+        keys = {
+            ("cylinder", p.radius, 0.0) if p.radius else ("box", p.size[0], p.size[1]): None
+            for p in pieces
+        }  # one mesh per distinct geometry, in order
+        coarsening = 1.0
+        while True:
+            self.tolerance = MESH_TOLERANCE * coarsening**2
+            self.segment = MAX_SEGMENT * coarsening
+            sections = {key: _section(key, self.tolerance, self.segment) for key in keys}
+            self.sides = sum(len(corners) for corners in sections.values())
+            if self.sides <= MAX_SCENE_SIDES:
+                break
+            coarsening *= max(1.1, self.sides / MAX_SCENE_SIDES)
+        if coarsening > 1.0:
+            logger.warning(
+                "lidar: %d distinct solids would need more than %d mesh sides "
+                "(bullet_maze.ray_scene.MAX_SCENE_SIDES); their meshes are coarser: cylinder "
+                "faces within %.3g units of the surface, wall faces in pieces of %.3g units",
+                len(keys),
+                MAX_SCENE_SIDES,
+                self.tolerance,
+                self.segment,
+            )
         self.client = pb.connect(pb.DIRECT)
         self._finalizer = weakref.finalize(self, disconnect_client, self.client)
         s, c = METRES_PER_UNIT, self.client
         half_height = WALL_HEIGHT / 2 * s
-        shapes: dict[tuple[str, float, float], int] = {}  # one mesh per distinct geometry
+        shapes: dict[tuple[str, float, float], int] = {}
         try:
             for piece in pieces:
                 (cx, cy), (sx, sy), radius = piece.center, piece.size, piece.radius
                 key = ("cylinder", radius, 0.0) if radius else ("box", sx, sy)
                 if key not in shapes:
-                    if radius:
-                        n = cylinder_sides(radius)
-                        out = 2.0 * radius / (1.0 + math.cos(math.pi / n)) * s
-                        angles = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
-                        corners = np.column_stack((np.cos(angles), np.sin(angles))) * out
-                    else:
-                        hx, hy = sx / 2 * s, sy / 2 * s
-                        corners = np.array([(-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy)])
-                    vertices, indices = _tube(_subdivided(corners, MAX_SEGMENT * s), half_height)
+                    vertices, indices = _tube(sections[key], half_height)
                     shapes[key] = pb.createCollisionShape(
                         pb.GEOM_MESH, vertices=vertices, indices=indices, physicsClientId=c
                     )

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import logging
 import math
 from collections.abc import Callable
 from pathlib import Path
@@ -12,7 +13,8 @@ import numpy as np
 import pybullet as pb
 import pytest
 
-from bullet_maze import BulletMazeEnv
+from bullet_maze import BulletMazeEnv, ray_scene
+from bullet_maze.params import METRES_PER_UNIT, WALL_HEIGHT
 from bullet_maze.ray_scene import (
     MAX_SIDES,
     MESH_TOLERANCE,
@@ -173,3 +175,46 @@ def test_the_scene_client_is_disconnected_on_close() -> None:
     env.close()
     assert not pb.isConnected(physicsClientId=client)
     env.close()  # again: nothing
+
+
+def test_a_scene_beyond_its_side_budget_is_coarsened_with_a_warning(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    monkeypatch.setattr(ray_scene, "MAX_SCENE_SIDES", 2000)
+    radii = [40.0 + k for k in range(10)]  # distinct: ten meshes of about 630 sides at 1e-3
+    pieces = [
+        Piece((100.0 * k + 50.0, 50.0), (0.0, 0.0), r, "obstacle") for k, r in enumerate(radii)
+    ]
+    pieces.append(Piece((500.0, 200.0), (900.0, 2.0), 0.0, "wall"))  # a long wall: 902 pieces
+    with caplog.at_level(logging.WARNING, logger="bullet_maze.ray_scene"):
+        scene = ray_scene.RayScene(pieces)
+    try:
+        assert scene.sides <= 2000
+        assert scene.tolerance > MESH_TOLERANCE
+        assert scene.segment > ray_scene.MAX_SEGMENT
+        assert math.isclose(
+            scene.tolerance / MESH_TOLERANCE, (scene.segment / ray_scene.MAX_SEGMENT) ** 2
+        )
+        assert "MAX_SCENE_SIDES" in caplog.text
+        assert "coarser" in caplog.text
+        # A ray at normal incidence still reads within the coarser tolerance: from 60 units left
+        # of the first tree's centre, its surface lies 20 units away.
+        s = METRES_PER_UNIT
+        z = 0.5 * WALL_HEIGHT * s
+        hit = scene.cast(np.array([[-10.0 * s, 50.0 * s, z]]), np.array([[50.0 * s, 50.0 * s, z]]))
+        distance = hit[0][2] * 60.0
+        assert abs(distance - 20.0) <= scene.tolerance + 1e-9
+    finally:
+        scene.close()
+
+
+def test_a_small_scene_keeps_the_stated_tolerance(caplog: pytest.LogCaptureFixture) -> None:
+    with caplog.at_level(logging.WARNING, logger="bullet_maze.ray_scene"):
+        scene = ray_scene.RayScene([Piece((0.0, 0.0), (0.0, 0.0), 45.0, "obstacle")])
+    try:
+        assert scene.tolerance == MESH_TOLERANCE
+        assert scene.segment == ray_scene.MAX_SEGMENT
+        assert scene.sides == cylinder_sides(45.0)
+        assert caplog.text == ""
+    finally:
+        scene.close()
