@@ -150,6 +150,13 @@ class TreeConfig:
     """A held exploratory run ends after this many steps (beyond the paper; None:
     ``max_epoch_steps``, which then caps unheld epochs only). Runs on
     :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
+    hold_crossings: float | None = None
+    """A held exploratory run ends after this many times the mean length, in steps, of the
+    agent's leaf crossings so far (its unheld epochs that ended on a change of leaf, over every
+    episode), rounded up, at least one step (beyond the paper; None: off). The cap follows the
+    task's own step scale: a leaf of Acrobot is crossed in a few steps, a maze cell in tens.
+    Before the first crossing ``max_epoch_steps`` applies. Exclusive with ``hold_steps``. Runs
+    on :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
     ensemble_trees: int = 1
     """Several trees whose Q-bar values are averaged, as tile coding averages offset tilings
     (beyond the paper; :class:`agent.tree_ensemble.TreeEnsembleAgent`): tree k's presplit
@@ -180,6 +187,23 @@ class TreeConfig:
             raise ValueError(
                 f"TreeConfig.hold_steps must be a positive int or None, got {self.hold_steps!r}"
             )
+        crossings = self.hold_crossings
+        if crossings is not None:
+            if (
+                isinstance(crossings, bool)
+                or not isinstance(crossings, int | float)
+                or not math.isfinite(crossings)
+                or crossings <= 0
+            ):
+                raise ValueError(
+                    "TreeConfig.hold_crossings must be a positive number or None, "
+                    f"got {crossings!r}"
+                )
+            if self.hold_steps is not None:
+                raise ValueError(
+                    f"TreeConfig.hold_crossings = {crossings!r} and hold_steps = "
+                    f"{self.hold_steps!r}: set one of them (both cap a held run)"
+                )
         if self.decision_steps is not None and (
             isinstance(self.decision_steps, bool)
             or not isinstance(self.decision_steps, int)

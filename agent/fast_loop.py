@@ -122,6 +122,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "ensemble_trees": int,
     "decision_steps": (int, type(None)),
     "hold_steps": (int, type(None)),
+    "hold_crossings": (float, int, type(None)),
     "decision_from_terminal": bool,
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the

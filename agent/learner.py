@@ -94,6 +94,7 @@ class SMDPAgent:
                 ("ensemble_trees", 1),
                 ("decision_steps", None),
                 ("hold_steps", None),
+                ("hold_crossings", None),
             ):
                 if getattr(self.config, name) != off:
                     raise ValueError(
@@ -535,7 +536,11 @@ class SMDPAgent:
                 learner["gate"] = {"terminals": terminals}
             seen = getattr(self, "terminals_seen", None)
             if seen is not None:
-                learner["loop"] = {"terminals": seen}
+                learner["loop"] = {
+                    "terminals": seen,
+                    "crossing_steps": getattr(self, "crossing_steps", 0),
+                    "crossings": getattr(self, "crossings", 0),
+                }
             if learner:
                 metadata["learner"] = learner
         arrays: dict[str, Any] = {
@@ -566,6 +571,7 @@ class SMDPAgent:
             config.ensemble_trees > 1
             or config.decision_steps is not None
             or config.hold_steps is not None
+            or config.hold_crossings is not None
         ):  # the loop options' class (agent.tree_ensemble), found without importing it
             seen: list[type[SMDPAgent]] = [SMDPAgent]
             while seen:
@@ -628,6 +634,11 @@ class SMDPAgent:
                 if isinstance(seen, bool) or not isinstance(seen, int) or seen < 0:
                     raise ValueError(f"learner loop terminals {seen!r} is not an int >= 0")
                 setattr(agent, "terminals_seen", seen)  # noqa: B010 (TreeEnsembleAgent)
+                for name in ("crossing_steps", "crossings"):  # absent in older files: 0
+                    count = learner["loop"].get(name, 0)
+                    if isinstance(count, bool) or not isinstance(count, int) or count < 0:
+                        raise ValueError(f"learner loop {name} {count!r} is not an int >= 0")
+                    setattr(agent, name, count)
         except (
             TypeError,
             ValueError,

@@ -26,6 +26,7 @@ own leaves, as :meth:`SMDPAgent._end_held_run` does for one tree.
 from __future__ import annotations
 
 import dataclasses
+import math
 from os import PathLike
 from pathlib import Path
 from typing import Any
@@ -119,6 +120,9 @@ class TreeEnsembleAgent(TreeAgent):
         """Tree 0 (this agent) and the shifted trees."""
         self.terminals_seen = 0
         """Terminal transitions seen (``TreeConfig.decision_from_terminal``)."""
+        self.crossing_steps = 0
+        self.crossings = 0
+        """Steps and count of the leaf crossings so far (``TreeConfig.hold_crossings``)."""
 
     def learn(
         self,
@@ -175,6 +179,9 @@ class TreeEnsembleAgent(TreeAgent):
         rng = self.uniform
         cap = cfg.max_epoch_steps if cfg.max_epoch_steps is not None else 1 << 62
         hold_cap = cap if cfg.hold_steps is None else cfg.hold_steps
+        crossings_cap = cfg.hold_crossings
+        if crossings_cap is not None and self.crossings:
+            hold_cap = max(1, math.ceil(crossings_cap * self.crossing_steps / self.crossings))
         redecide = cfg.decision_steps is not None and (
             self.terminals_seen > 0 or not cfg.decision_from_terminal
         )
@@ -232,6 +239,13 @@ class TreeEnsembleAgent(TreeAgent):
                         bootstrap = 0.0 if terminated else max(m.q[nxt[i]])
                         split = m._end_epoch(leaves[i], action, xs, rs, bootstrap, x, terminated)
                     splits.append(split)
+                if not hold and nxt != leaves:  # a leaf crossing (hold_crossings)
+                    self.crossing_steps += len(rs)
+                    self.crossings += 1
+                    if crossings_cap is not None:
+                        hold_cap = max(
+                            1, math.ceil(crossings_cap * self.crossing_steps / self.crossings)
+                        )
                 if done:
                     break
                 leaves = [
@@ -274,12 +288,13 @@ class TreeEnsembleAgent(TreeAgent):
 
 def tree_agent_class(config: TreeConfig) -> type[TreeAgent]:
     """The tree agent a configuration asks for: :class:`TreeEnsembleAgent` when
-    ``ensemble_trees > 1`` or ``decision_steps`` or ``hold_steps`` is set (its loop runs
-    them), else :class:`TreeAgent`."""
+    ``ensemble_trees > 1`` or ``decision_steps``, ``hold_steps`` or ``hold_crossings`` is set
+    (its loop runs them), else :class:`TreeAgent`."""
     if (
         config.ensemble_trees > 1
         or config.decision_steps is not None
         or config.hold_steps is not None
+        or config.hold_crossings is not None
     ):
         return TreeEnsembleAgent
     return TreeAgent

@@ -210,3 +210,46 @@ def test_decisions_from_the_first_terminal_on(tmp_path: Any) -> None:
     assert agent.terminals_seen == 2
     loaded = TreeAgent.load(agent.save(tmp_path / "agent.npz"))
     assert loaded.terminals_seen == 2  # type: ignore[attr-defined]
+
+
+def test_hold_crossings_cap_a_held_run_at_a_multiple_of_the_mean_leaf_crossing(
+    tmp_path: Any,
+) -> None:
+    # One tree presplit at 0.5. A greedy episode crosses the split once, after 5 steps of 0.1
+    # (0.02 -> 0.52); its last epoch ends at the goal inside the same leaf (not a crossing).
+    env = Walk()
+    config = plain_config(hold_exploration=True, hold_crossings=0.4)
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, "epsilon-greedy", 0, config
+    )
+    assert type(agent) is TreeEnsembleAgent
+    for row in agent.q:
+        row[:] = [-1e6, 1e-9]
+    agent.exploration._epsilon = 0.0  # type: ignore[attr-defined]
+    first = agent.learn(env, 1, reset_seed=0)[0]
+    assert (first.steps, first.epochs) == (10, 2)
+    assert (agent.crossing_steps, agent.crossings) == (5, 1)
+    # Every choice now random and held: each run ends after ceil(0.4 x 5) = 2 steps, and held
+    # runs are not crossings (the mean stays 5).
+    agent.exploration._epsilon = 1.0  # type: ignore[attr-defined]
+    second = agent.learn(env, 1, reset_seed=1)[0]
+    assert second.epochs == -(-second.steps // 2)
+    assert (agent.crossing_steps, agent.crossings) == (5, 1)
+    # the counts travel with a saved agent
+    loaded = TreeAgent.load(agent.save(tmp_path / "agent.npz"))
+    assert (loaded.crossing_steps, loaded.crossings) == (5, 1)  # type: ignore[attr-defined]
+
+
+def test_hold_crossings_is_off_by_default_and_checked() -> None:
+    assert TreeConfig().hold_crossings is None
+    assert preset("general").config.hold_crossings is None
+    assert type(tree_agent_class(TreeConfig())) is not TreeEnsembleAgent
+    for bad in (0, -1.0, float("nan"), float("inf"), True, "2"):
+        with pytest.raises(ValueError, match="hold_crossings must be a positive number or None"):
+            TreeConfig(hold_crossings=bad)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="set one of them"):
+        TreeConfig(hold_crossings=2.0, hold_steps=5)
+    with pytest.raises(ValueError, match=r"hold_crossings = 2.0 needs agent\.tree_ensemble"):
+        TreeAgent(
+            Walk.observation_space, Walk.action_space, "greedy", 0, plain_config(hold_crossings=2.0)
+        )

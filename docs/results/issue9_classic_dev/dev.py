@@ -4,7 +4,8 @@ One job: the general preset's config with ``overrides``, agent seed s, first res
 1,000 episodes, then 20 greedy episodes reset with seeds 10^6 + 1000 s + i (the protocol of
 tests/agent/test_classic_learning.py). Each job appends one JSON line to ``results.jsonl``
 (greedy mean, training mean of the last 100 episodes, leaves, CPU seconds, steps, and from
-the third batch on every greedy episode's return)::
+the third batch on every greedy episode's return; a second argument names another output
+file)::
 
     PYTHONPATH=. nice -n 10 python docs/results/issue9_classic_dev/dev.py \
         '[{"task": "CartPole-v1", "label": "dec1gT", "seed": 0,
@@ -43,7 +44,14 @@ def greedy(agent: Any, env: gym.Env, episodes: int, seed: int) -> list[float]:
     return out
 
 
-def run(task: str, label: str, overrides: dict[str, Any], seed: int, episodes: int = 1000) -> None:
+def run(
+    task: str,
+    label: str,
+    overrides: dict[str, Any],
+    seed: int,
+    episodes: int = 1000,
+    out: Path = OUT,
+) -> None:
     general = preset("general")
     config = dataclasses.replace(general.config, **overrides)
     env = gym.make(task)
@@ -66,10 +74,11 @@ def run(task: str, label: str, overrides: dict[str, Any], seed: int, episodes: i
         "steps": sum(h.steps for h in history),
         "greedy_all": [round(v) for v in returns],
     }
-    with OUT.open("a") as f:
+    with out.open("a") as f:
         f.write(json.dumps(record) + "\n")
 
 
 if __name__ == "__main__":
+    target = Path(sys.argv[2]) if len(sys.argv) > 2 else OUT
     for job in json.loads(sys.argv[1]):
-        run(job["task"], job["label"], job.get("o", {}), job["seed"])
+        run(job["task"], job["label"], job.get("o", {}), job["seed"], out=target)
