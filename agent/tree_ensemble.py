@@ -171,6 +171,11 @@ class TreeEnsembleAgent(TreeAgent):
             f"{self.config.ensemble_trees}) has no file format yet"
         )
 
+    def _crossings_hold_cap(self, crossings: float) -> int:
+        """``TreeConfig.hold_crossings``: ``crossings`` times the mean leaf crossing so far,
+        rounded up, at least one step (at least one crossing seen)."""
+        return max(1, math.ceil(crossings * self.crossing_steps / self.crossings))
+
     def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:
         """The reference loop (:meth:`SMDPAgent._run_episode`) over every tree at once."""
         cfg = self.config
@@ -181,7 +186,7 @@ class TreeEnsembleAgent(TreeAgent):
         hold_cap = cap if cfg.hold_steps is None else cfg.hold_steps
         crossings_cap = cfg.hold_crossings
         if crossings_cap is not None and self.crossings:
-            hold_cap = max(1, math.ceil(crossings_cap * self.crossing_steps / self.crossings))
+            hold_cap = self._crossings_hold_cap(crossings_cap)
         redecide = cfg.decision_steps is not None and (
             self.terminals_seen > 0 or not cfg.decision_from_terminal
         )
@@ -243,9 +248,7 @@ class TreeEnsembleAgent(TreeAgent):
                     self.crossing_steps += len(rs)
                     self.crossings += 1
                     if crossings_cap is not None:
-                        hold_cap = max(
-                            1, math.ceil(crossings_cap * self.crossing_steps / self.crossings)
-                        )
+                        hold_cap = self._crossings_hold_cap(crossings_cap)
                 if done:
                     break
                 leaves = [

@@ -76,6 +76,13 @@ def cylinder_sides(radius: float, tolerance: float = MESH_TOLERANCE) -> int:
     return min(max(sides, MIN_SIDES), MAX_SIDES)
 
 
+def _key(piece: Piece) -> tuple[str, float, float]:
+    """A piece's geometry without its place: pieces with equal keys share one mesh."""
+    if piece.radius:
+        return ("cylinder", piece.radius, 0.0)
+    return ("box", piece.size[0], piece.size[1])
+
+
 def _section(key: tuple[str, float, float], tolerance: float, segment: float) -> np.ndarray:
     """The horizontal section of a box ``("box", sx, sy)`` or a cylinder ``("cylinder", r, 0)``
     (maze units) as its mesh's corners in order, in metres about its centre, no edge longer than
@@ -124,10 +131,7 @@ class RayScene:
     docstring. ``cast`` answers a batch of rays in metres."""
 
     def __init__(self, pieces: Sequence[Piece]) -> None:
-        keys = {
-            ("cylinder", p.radius, 0.0) if p.radius else ("box", p.size[0], p.size[1]): None
-            for p in pieces
-        }  # one mesh per distinct geometry, in order
+        keys = {_key(p): None for p in pieces}  # one mesh per distinct geometry, in order
         coarsening = 1.0
         while True:
             self.tolerance = MESH_TOLERANCE * coarsening**2
@@ -154,8 +158,8 @@ class RayScene:
         shapes: dict[tuple[str, float, float], int] = {}
         try:
             for piece in pieces:
-                (cx, cy), (sx, sy), radius = piece.center, piece.size, piece.radius
-                key = ("cylinder", radius, 0.0) if radius else ("box", sx, sy)
+                cx, cy = piece.center
+                key = _key(piece)
                 if key not in shapes:
                     vertices, indices = _tube(sections[key], half_height)
                     shapes[key] = pb.createCollisionShape(
