@@ -146,6 +146,15 @@ class TreeConfig:
     the paper). Re-deciding at
     every step before any value has formed left MountainCar's car rocking in the valley
     (never at the flag in 1,000 episodes on two dev seeds)."""
+    decision_on_failure: bool = False
+    """``decision_steps`` applies only while the agent's terminal transitions are failures,
+    measured (beyond the paper): the mean reward of the terminal steps seen so far is below
+    the mean one-step target ``r + gamma max_a Q(s', a)`` of the steps that ended a
+    non-terminal epoch, so ending the episode is worth less than going on. CartPole's fall
+    (+1, against 1 + gamma Q with Q > 0) is one; MountainCar's and Acrobot's goal (-1, against
+    -1 + gamma Q with Q < 0) and a maze's goal (+5) are not, and there the option changes
+    nothing. Read at the start of each episode, from the episode after the first terminal
+    (so it implies ``decision_from_terminal``). Needs ``decision_steps``."""
     hold_steps: int | None = None
     """A held exploratory run ends after this many steps (beyond the paper; None:
     ``max_epoch_steps``, which then caps unheld epochs only). Runs on
@@ -212,6 +221,13 @@ class TreeConfig:
             raise ValueError(
                 f"TreeConfig.decision_steps must be a positive int or None, "
                 f"got {self.decision_steps!r}"
+            )
+        for name in ("decision_from_terminal", "decision_on_failure"):
+            if not isinstance(getattr(self, name), bool):
+                raise TypeError(f"TreeConfig.{name} must be a bool, got {getattr(self, name)!r}")
+        if self.decision_on_failure and self.decision_steps is None:
+            raise ValueError(
+                "TreeConfig.decision_on_failure = True needs decision_steps (it gates them)"
             )
         if not isinstance(self.split_min_samples, int) or self.split_min_samples < 2:
             raise ValueError(

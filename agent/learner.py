@@ -540,6 +540,9 @@ class SMDPAgent:
                     "terminals": seen,
                     "crossing_steps": getattr(self, "crossing_steps", 0),
                     "crossings": getattr(self, "crossings", 0),
+                    "terminal_reward_sum": getattr(self, "terminal_reward_sum", 0.0),
+                    "target_sum": getattr(self, "target_sum", 0.0),
+                    "targets": getattr(self, "targets", 0),
                 }
             if learner:
                 metadata["learner"] = learner
@@ -634,11 +637,18 @@ class SMDPAgent:
                 if isinstance(seen, bool) or not isinstance(seen, int) or seen < 0:
                     raise ValueError(f"learner loop terminals {seen!r} is not an int >= 0")
                 setattr(agent, "terminals_seen", seen)  # noqa: B010 (TreeEnsembleAgent)
-                for name in ("crossing_steps", "crossings"):  # absent in older files: 0
+                for name in ("crossing_steps", "crossings", "targets"):  # older files: 0
                     count = learner["loop"].get(name, 0)
                     if isinstance(count, bool) or not isinstance(count, int) or count < 0:
                         raise ValueError(f"learner loop {name} {count!r} is not an int >= 0")
                     setattr(agent, name, count)
+                for name in ("terminal_reward_sum", "target_sum"):  # older files: 0
+                    total = learner["loop"].get(name, 0.0)
+                    if isinstance(total, bool) or not isinstance(total, int | float):
+                        raise ValueError(f"learner loop {name} {total!r} is not a number")
+                    if not math.isfinite(total):
+                        raise ValueError(f"learner loop {name} {total!r} is not finite")
+                    setattr(agent, name, float(total))
         except (
             TypeError,
             ValueError,

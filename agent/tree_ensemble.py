@@ -123,6 +123,12 @@ class TreeEnsembleAgent(TreeAgent):
         self.crossing_steps = 0
         self.crossings = 0
         """Steps and count of the leaf crossings so far (``TreeConfig.hold_crossings``)."""
+        self.terminal_reward_sum = 0.0
+        self.target_sum = 0.0
+        self.targets = 0
+        """The terminal steps' rewards (over :attr:`terminals_seen` of them), and the sum and
+        count of the one-step targets of the steps that ended a non-terminal epoch
+        (``TreeConfig.decision_on_failure``)."""
 
     def learn(
         self,
@@ -171,6 +177,15 @@ class TreeEnsembleAgent(TreeAgent):
             f"{self.config.ensemble_trees}) has no file format yet"
         )
 
+    @property
+    def terminals_fail(self) -> bool:
+        """``TreeConfig.decision_on_failure``'s measure: the mean reward of the terminal steps
+        seen is below the mean one-step target ``r + gamma max_a Q(s', a)`` of the steps that
+        ended a non-terminal epoch (False before either has been seen)."""
+        if self.terminals_seen == 0 or self.targets == 0:
+            return False
+        return self.terminal_reward_sum / self.terminals_seen < self.target_sum / self.targets
+
     def _crossings_hold_cap(self, crossings: float) -> int:
         """``TreeConfig.hold_crossings``: ``crossings`` times the mean leaf crossing so far,
         rounded up, at least one step (at least one crossing seen)."""
@@ -187,9 +202,14 @@ class TreeEnsembleAgent(TreeAgent):
         crossings_cap = cfg.hold_crossings
         if crossings_cap is not None and self.crossings:
             hold_cap = self._crossings_hold_cap(crossings_cap)
-        redecide = cfg.decision_steps is not None and (
-            self.terminals_seen > 0 or not cfg.decision_from_terminal
-        )
+        if cfg.decision_on_failure:
+            redecide = cfg.decision_steps is not None and self.terminals_fail
+        else:
+            redecide = cfg.decision_steps is not None and (
+                self.terminals_seen > 0 or not cfg.decision_from_terminal
+            )
+        measure = cfg.decision_on_failure
+        gamma = cfg.gamma
         decide = cfg.decision_steps if redecide and cfg.decision_steps is not None else cap
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
@@ -236,6 +256,12 @@ class TreeEnsembleAgent(TreeAgent):
                 inside = (
                     redecide and not hold and nxt == leaves and not (collided and end_on_collision)
                 )
+                if measure:  # decision_on_failure, before this epoch's updates
+                    if terminated:
+                        self.terminal_reward_sum += r
+                    else:
+                        self.target_sum += r + gamma * max(self.mean_row(nxt))
+                        self.targets += 1
                 splits = []
                 for i, m in enumerate(members):
                     if hold:

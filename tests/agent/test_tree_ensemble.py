@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import json
 from typing import Any
 
 import gymnasium as gym
@@ -253,3 +254,113 @@ def test_hold_crossings_is_off_by_default_and_checked() -> None:
         TreeAgent(
             Walk.observation_space, Walk.action_space, "greedy", 0, plain_config(hold_crossings=2.0)
         )
+
+
+class Fall(Walk):
+    """Walk with +1 a step: reaching x >= 1 ends the episode as CartPole's fall ends it."""
+
+    def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict]:
+        obs, _, terminated, truncated, info = super().step(action)
+        return obs, 1.0, terminated, truncated, info
+
+
+def _gated_agent(env: gym.Env) -> TreeEnsembleAgent:
+    config = plain_config(decision_steps=2, decision_on_failure=True, gamma=0.5)
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    assert isinstance(agent, TreeEnsembleAgent)
+    for row in agent.q:
+        row[:] = [-1e6, 0.0]  # greedy takes action 1; its values start at q_init's 0
+    return agent
+
+
+def test_decisions_on_failure_open_where_the_terminal_ends_positive_rewards() -> None:
+    # Greedy takes action 1: x = 0.02, 0.12, ..., 0.92, 1.02; the split at 0.5 is crossed
+    # after 5 steps, and the episode ends 5 steps later.
+    agent = _gated_agent(Fall())
+    right = agent.partition.leaf_of([0.9])
+    first = agent.learn(Fall(), 1, reset_seed=0)[0]
+    # Episode 0: nothing measured before it. Its one non-terminal epoch ended at x = 0.52 with
+    # r = 1, bootstrapping from the right leaf's unlearnt 0: target 1, equal to the terminal
+    # step's reward 1, so no failure yet.
+    assert first.epochs == 2
+    assert (agent.terminals_seen, agent.terminal_reward_sum) == (1, 1.0)
+    assert (agent.targets, agent.target_sum) == (1, 1.0)
+    assert not agent.terminals_fail
+    learnt = agent.q[right][1]
+    assert learnt > 0.0
+    second = agent.learn(Fall(), 1, reset_seed=1)[0]
+    assert second.epochs == 2  # the gate is read at the episode's start: still shut
+    # Episode 1's crossing bootstraps from what episode 0 taught the right leaf
+    assert (agent.targets, agent.target_sum) == (2, 1.0 + 1.0 + 0.5 * learnt)
+    assert agent.terminal_reward_sum == 2.0
+    assert agent.terminals_fail  # mean target above 1: ending the episode loses value
+    third = agent.learn(Fall(), 1, reset_seed=2)[0]
+    assert third.epochs == 6  # re-decided every second step from now on
+    assert agent.targets == 7
+
+
+def test_decisions_on_failure_stay_shut_where_the_terminal_is_a_goal(tmp_path: Any) -> None:
+    agent = _gated_agent(Walk())  # -1 a step: the end at x >= 1 is a goal
+    config = plain_config(gamma=0.5)  # the gated agent's, without the option
+    plain = tree_agent_class(config)(
+        Walk().observation_space, Walk().action_space, "greedy", 0, config
+    )
+    for row in plain.q:
+        row[:] = [-1e6, 0.0]
+    gated = agent.learn(Walk(), 3, reset_seed=0)
+    assert [s.epochs for s in gated] == [2, 2, 2]
+    assert not agent.terminals_fail
+    # target -1 + 0.5 max Q(right leaf) < -1 once the right leaf has learnt; the terminal -1
+    assert agent.terminal_reward_sum == -3.0
+    assert agent.target_sum / agent.targets < -1.0
+    assert [s.episode_return for s in gated] == [
+        s.episode_return for s in plain.learn(Walk(), 3, reset_seed=0)
+    ]
+    assert [list(row) for row in agent.q] == [list(row) for row in plain.q]
+    loaded = TreeAgent.load(agent.save(tmp_path / "agent.npz"))
+    assert isinstance(loaded, TreeEnsembleAgent)
+    assert (loaded.terminal_reward_sum, loaded.target_sum, loaded.targets) == (
+        agent.terminal_reward_sum,
+        agent.target_sum,
+        agent.targets,
+    )
+
+
+def _edit_loop(source: Any, target: Any, name: str, value: object) -> Any:
+    with np.load(source, allow_pickle=False) as data:
+        arrays = {key: data[key].copy() for key in data.files}
+    meta = json.loads(arrays.pop("metadata").tobytes())
+    meta["learner"]["loop"][name] = value
+    np.savez(target, metadata=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **arrays)
+    return target
+
+
+@pytest.mark.parametrize(
+    ("name", "value", "defect"),
+    [
+        ("target_sum", "1.0", r"learner loop target_sum '1\.0' is not a number"),
+        ("target_sum", True, r"learner loop target_sum True is not a number"),
+        ("terminal_reward_sum", 1e400, r"not valid JSON|is not finite"),
+        ("targets", -1, r"learner loop targets -1 is not an int >= 0"),
+        ("targets", 2.5, r"learner loop targets 2\.5 is not an int >= 0"),
+    ],
+)
+def test_a_damaged_failure_measure_in_a_file_is_refused_by_name(
+    tmp_path: Any, name: str, value: object, defect: str
+) -> None:
+    agent = _gated_agent(Fall())
+    agent.learn(Fall(), 1, reset_seed=0)
+    good = agent.save(tmp_path / "good.npz")
+    bad = _edit_loop(good, tmp_path / "bad.npz", name, value)
+    with pytest.raises(ValueError, match=defect) as error:
+        TreeAgent.load(bad)
+    assert str(bad) in str(error.value)
+
+
+def test_decisions_on_failure_are_checked() -> None:
+    with pytest.raises(ValueError, match="decision_on_failure = True needs decision_steps"):
+        TreeConfig(decision_on_failure=True)
+    with pytest.raises(TypeError, match="decision_on_failure must be a bool, got 1"):
+        TreeConfig(decision_steps=1, decision_on_failure=1)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="decision_from_terminal must be a bool, got 'yes'"):
+        TreeConfig(decision_from_terminal="yes")  # type: ignore[arg-type]
