@@ -127,7 +127,10 @@ def test_the_drivers_death_takes_its_workers_with_it(small_config, tmp_path: Pat
 
 
 def test_ctrl_c_keeps_finished_runs_and_ends_the_workers(standins, tmp_path: Path):
-    config = standins.tiny_config(tmp_path, episodes=20, cap=300, runs=3)
+    # runs long enough that work is left when the interrupt lands, even on a loaded machine
+    # (with 20 episodes a run the last runs once finished before SIGINT arrived, under a CI
+    # load of two other processes)
+    config = standins.tiny_config(tmp_path, episodes=80, cap=300, runs=3)
     out = tmp_path / "interrupted"
     command = [
         sys.executable,
