@@ -124,11 +124,13 @@ class TreeEnsembleAgent(TreeAgent):
         self.crossing_steps = 0
         self.crossings = 0
         """Steps and count of the leaf crossings so far (``TreeConfig.hold_crossings``)."""
-        self._trace: list[tuple[list[float], int, float, int, bool, list[float]]] | None = (
-            [] if self.config.model_lambda > 0.0 and self.model is not None else None
-        )
+        self._trace: list[tuple[list[float], int, float, int, bool, list[float], bool]] | None
+        self._trace = [] if self.config.model_lambda > 0.0 and self.model is not None else None
         """This episode's model epochs in order (``TreeConfig.model_lambda``): first input,
-        action, discounted reward from the first input, length, terminal, end input."""
+        action, discounted reward from the first input, length, terminal, end input, and
+        whether its action was exploratory."""
+        self._explored = False
+        """Whether the action of the epoch under way was exploratory (``model_lambda``)."""
         self.terminal_reward_sum = 0.0
         self.target_sum = 0.0
         self.targets = 0
@@ -206,7 +208,7 @@ class TreeEnsembleAgent(TreeAgent):
         for the episode's lambda-returns (:meth:`_blend_episode`)."""
         if self._trace is not None and end_x is not None:
             start = epoch_returns(rs, 0.0, self.config.gamma)[0]
-            self._trace.append((xs[0], action, start, len(rs), terminated, end_x))
+            self._trace.append((xs[0], action, start, len(rs), terminated, end_x, self._explored))
         return super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
 
     def _blend_episode(self, terminated: bool) -> None:
@@ -217,9 +219,11 @@ class TreeEnsembleAgent(TreeAgent):
             G_after(e - 1) = R0_e + gamma^tau_e [(1 - lambda) V-bar(s'_e) + lambda G_after(e)],
 
         R0_e the epoch's discounted rewards from its first input (eq. 6) and V-bar under the
-        values now; each stored epoch is blended with its G_after (:meth:`LeafModel.blend`),
-        the Q-bar of every blended (leaf, action) is set to its model value, and the moved
-        leaves are swept as after an epoch."""
+        values now, except that the return before an epoch whose action was exploratory is cut
+        there, G_after(e - 1) = V-bar(s_e) (Watkins's Q(lambda): what follows an exploratory
+        action says nothing of the greedy policy's return). Each stored epoch is blended with
+        its G_after (:meth:`LeafModel.blend`), the Q-bar of every blended (leaf, action) is set
+        to its model value, and the moved leaves are swept as after an epoch."""
         trace, self._trace = self._trace, []
         model = self.model
         if not trace or model is None:
@@ -231,15 +235,17 @@ class TreeEnsembleAgent(TreeAgent):
         leaf_of = self.partition.leaf_of
         after = 0.0 if terminated else max(q[leaf_of(trace[-1][5])])
         touched: dict[tuple[int, int], None] = {}
-        for first, action, start, tau, terminal, end_x in reversed(trace):
+        for first, action, start, tau, terminal, end_x, explored in reversed(trace):
             if terminal:
                 after = start
-                continue
-            leaf = leaf_of(first)
-            if model.blend(leaf, action, first, lam, after):
-                touched[(leaf, action)] = None
-            v_end = max(q[leaf_of(end_x)])
-            after = start + gamma**tau * ((1.0 - lam) * v_end + lam * after)
+            else:
+                leaf = leaf_of(first)
+                if model.blend(leaf, action, first, lam, after):
+                    touched[(leaf, action)] = None
+                v_end = max(q[leaf_of(end_x)])
+                after = start + gamma**tau * ((1.0 - lam) * v_end + lam * after)
+            if explored:  # Watkins: the return before an exploratory action is cut there
+                after = max(q[leaf_of(first)])
         tolerance = self._in_units(cfg.sweep_tolerance)
         for leaf, action in touched:
             row = q[leaf]
@@ -286,6 +292,7 @@ class TreeEnsembleAgent(TreeAgent):
         leaves = self._leaves(x)
         action = strategy.select(leaves[0], self.mean_row(leaves), rng)
         hold = hold_exploration and strategy.explored
+        self._explored = strategy.explored
         eps_sum = strategy.epsilon(leaves[0])
         xs: list[list[float]] = []
         rs: list[float] = []
@@ -353,9 +360,11 @@ class TreeEnsembleAgent(TreeAgent):
                 if inside and not any(splits):
                     action = greedy_action(self.mean_row(leaves), rng)
                     hold = False
+                    self._explored = False
                 else:
                     action = strategy.select(leaves[0], self.mean_row(leaves), rng)
                     hold = hold_exploration and strategy.explored
+                    self._explored = strategy.explored
                 eps_sum += strategy.epsilon(leaves[0])
                 epochs += 1
                 xs = []
