@@ -138,6 +138,11 @@ class TreeConfig:
     of an aggregated chain; returns actually observed are not aliased (Sutton and Barto 2018,
     section 12, and the tile coder's Sarsa(lambda), ``agent.tile_coding``). 0: off (one-step
     backups only)."""
+    model_lambda_watkins: bool = False
+    """With ``model_lambda``: the return before an epoch whose action was exploratory is cut
+    there, as Watkins's Q(lambda) cuts its traces (the return then is V-bar where the
+    exploratory action began). False: the episode's return as it happened, exploratory
+    actions included (the on-policy reading, as Sarsa(lambda) and Peng's Q(lambda))."""
     decision_steps: int | None = None
     """An epoch of an action that is not a held exploratory run ends after this many steps
     (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
@@ -245,7 +250,12 @@ class TreeConfig:
                 f"TreeConfig.model_lambda = {lam!r} works with one tree only, got "
                 f"ensemble_trees = {self.ensemble_trees!r}"
             )
-        for name in ("decision_from_terminal", "decision_on_failure"):
+        if self.model_lambda_watkins is True and lam == 0.0:
+            raise ValueError(
+                "TreeConfig.model_lambda_watkins = True needs model_lambda > 0 "
+                "(it cuts the returns model_lambda blends in)"
+            )
+        for name in ("decision_from_terminal", "decision_on_failure", "model_lambda_watkins"):
             if not isinstance(getattr(self, name), bool):
                 raise TypeError(f"TreeConfig.{name} must be a bool, got {getattr(self, name)!r}")
         if self.decision_on_failure and self.decision_steps is None:

@@ -121,6 +121,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     # matters only with the model, which turns the loop off; a positive value also makes
     # the agent a TreeEnsembleAgent
     "model_lambda": (float, int),
+    "model_lambda_watkins": bool,
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
     "decision_steps": (int, type(None)),

@@ -219,17 +219,19 @@ class TreeEnsembleAgent(TreeAgent):
             G_after(e - 1) = R0_e + gamma^tau_e [(1 - lambda) V-bar(s'_e) + lambda G_after(e)],
 
         R0_e the epoch's discounted rewards from its first input (eq. 6) and V-bar under the
-        values now, except that the return before an epoch whose action was exploratory is cut
-        there, G_after(e - 1) = V-bar(s_e) (Watkins's Q(lambda): what follows an exploratory
-        action says nothing of the greedy policy's return). Each stored epoch is blended with
-        its G_after (:meth:`LeafModel.blend`), the Q-bar of every blended (leaf, action) is set
-        to its model value, and the moved leaves are swept as after an epoch."""
+        values now. With ``TreeConfig.model_lambda_watkins`` the return before an epoch whose
+        action was exploratory is cut there, G_after(e - 1) = V-bar(s_e) (Watkins's Q(lambda):
+        what follows an exploratory action says nothing of the greedy policy's return). Each
+        stored epoch is blended with its G_after (:meth:`LeafModel.blend`), the Q-bar of every
+        blended (leaf, action) is set to its model value, and the moved leaves are swept as
+        after an epoch."""
         trace, self._trace = self._trace, []
         model = self.model
         if not trace or model is None:
             return
         cfg = self.config
         lam = cfg.model_lambda
+        watkins = cfg.model_lambda_watkins
         gamma = cfg.gamma
         q = self.q
         leaf_of = self.partition.leaf_of
@@ -244,7 +246,7 @@ class TreeEnsembleAgent(TreeAgent):
                     touched[(leaf, action)] = None
                 v_end = max(q[leaf_of(end_x)])
                 after = start + gamma**tau * ((1.0 - lam) * v_end + lam * after)
-            if explored:  # Watkins: the return before an exploratory action is cut there
+            if explored and watkins:  # the return before an exploratory action is cut there
                 after = max(q[leaf_of(first)])
         tolerance = self._in_units(cfg.sweep_tolerance)
         for leaf, action in touched:

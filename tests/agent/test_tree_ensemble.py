@@ -436,16 +436,44 @@ def test_model_lambda_bootstraps_a_truncated_episode_from_the_value_where_it_sto
     left, right = agent.partition.leaf_of([0.1]), agent.partition.leaf_of([0.9])
     agent.q[right][1] = -4.0
     stats = agent.learn(env, 1, reset_seed=0)[0]
-    assert stats.truncated and stats.steps == 5
+    assert stats.truncated
+    assert stats.steps == 5
     gamma = 0.5
     returns = [-sum(gamma**j for j in range(5 - k)) + gamma ** (5 - k) * -4.0 for k in range(5)]
     assert agent.q[left][1] == pytest.approx(sum(returns) / 5, abs=1e-12)
     assert agent.q[right][1] == -4.0
 
 
+@pytest.mark.parametrize(("watkins", "expected"), [(False, -1.75), (True, -1.625)])
+def test_model_lambda_watkins_cuts_the_return_at_an_exploratory_epoch(
+    watkins: bool, expected: float
+) -> None:
+    # Epoch A: one greedy step in the left leaf (-1) into the right leaf; epoch B: an
+    # exploratory action there, two steps (-1, -1) to the end. gamma 0.5, lambda 1.
+    env = Walk()
+    config = plain_config(
+        planning="sweep", sweep_backups=8, gamma=0.5, model_lambda=1.0, model_lambda_watkins=watkins
+    )
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    assert isinstance(agent, TreeEnsembleAgent)
+    for row in agent.q:
+        row[:] = [-1e6, 0.0]
+    left, right = agent.partition.leaf_of([0.1]), agent.partition.leaf_of([0.9])
+    agent._explored = False
+    agent._end_epoch(left, 1, [[0.1]], [-1.0], 0.0, [0.6], False)
+    agent._explored = True
+    agent._end_epoch(right, 1, [[0.6], [0.8]], [-1.0, -1.0], 0.0, [1.0], True)
+    assert agent.q[right][1] == (-1.5 + -1.0) / 2  # eq. (8): the mean over B's two inputs
+    agent._blend_episode(terminated=True)
+    # on-policy: A's return after it is B's own, -1.5: -1 + 0.5 x -1.5; Watkins: V-bar where
+    # B began, the right leaf's -1.25: -1 + 0.5 x -1.25
+    assert agent.q[left][1] == expected
+
+
 @pytest.mark.parametrize(
     ("changes", "defect"),
     [
+        ({"model_lambda_watkins": True}, r"model_lambda_watkins = True needs model_lambda > 0"),
         (
             {"model_lambda": 1.5, "planning": "sweep"},
             r"model_lambda must be a number in \[0, 1\], got 1\.5",
