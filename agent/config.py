@@ -128,6 +128,21 @@ class TreeConfig:
     information about where the goal is, so the bonus can only steer the greedy policy
     towards the least-tried (leaf, action) pairs; afterwards the learner is the one without
     a bonus. 0: the bonus (if any) applies for ever."""
+    model_lambda: float = 0.0
+    """Lambda-returns in the model (beyond the paper; needs ``planning="sweep"``, one tree): at
+    the end of each episode every epoch it stored (eq. 9's inputs) has its bootstrap
+    ``D V-bar(s')`` replaced by ``D [(1 - lambda) V-bar(s') + lambda G]``, G the episode's own
+    lambda-return after the epoch (over its later epochs, eq. 6's discounting, under the
+    values at the episode's end; 0 after a terminal state, V-bar at a truncation). Inside a
+    leaf the states are aliased, so the model's one-step backups converge to the fixed point
+    of an aggregated chain; returns actually observed are not aliased (Sutton and Barto 2018,
+    section 12, and the tile coder's Sarsa(lambda), ``agent.tile_coding``). 0: off (one-step
+    backups only)."""
+    model_lambda_watkins: bool = False
+    """With ``model_lambda``: the return before an epoch whose action was exploratory is cut
+    there, as Watkins's Q(lambda) cuts its traces (the return then is V-bar where the
+    exploratory action began). False: the episode's return as it happened, exploratory
+    actions included (the on-policy reading, as Sarsa(lambda) and Peng's Q(lambda))."""
     decision_steps: int | None = None
     """An epoch of an action that is not a held exploratory run ends after this many steps
     (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
@@ -222,7 +237,25 @@ class TreeConfig:
                 f"TreeConfig.decision_steps must be a positive int or None, "
                 f"got {self.decision_steps!r}"
             )
-        for name in ("decision_from_terminal", "decision_on_failure"):
+        lam = self.model_lambda
+        if isinstance(lam, bool) or not isinstance(lam, int | float) or not 0.0 <= lam <= 1.0:
+            raise ValueError(f"TreeConfig.model_lambda must be a number in [0, 1], got {lam!r}")
+        if lam > 0.0 and self.planning != "sweep":
+            raise ValueError(
+                f"TreeConfig.model_lambda = {lam!r} needs planning = 'sweep' (it changes the "
+                f"model's stored epochs), got planning = {self.planning!r}"
+            )
+        if lam > 0.0 and self.ensemble_trees > 1:
+            raise ValueError(
+                f"TreeConfig.model_lambda = {lam!r} works with one tree only, got "
+                f"ensemble_trees = {self.ensemble_trees!r}"
+            )
+        if self.model_lambda_watkins is True and lam == 0.0:
+            raise ValueError(
+                "TreeConfig.model_lambda_watkins = True needs model_lambda > 0 "
+                "(it cuts the returns model_lambda blends in)"
+            )
+        for name in ("decision_from_terminal", "decision_on_failure", "model_lambda_watkins"):
             if not isinstance(getattr(self, name), bool):
                 raise TypeError(f"TreeConfig.{name} must be a bool, got {getattr(self, name)!r}")
         if self.decision_on_failure and self.decision_steps is None:

@@ -118,6 +118,10 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "leaves_per_terminal": int,
     # matters only with the model (model_bonus), which turns the loop off
     "model_bonus_terminals": int,
+    # matters only with the model, which turns the loop off; a positive value also makes
+    # the agent a TreeEnsembleAgent
+    "model_lambda": (float, int),
+    "model_lambda_watkins": bool,
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
     "decision_steps": (int, type(None)),

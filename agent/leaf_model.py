@@ -95,6 +95,27 @@ class LeafModel:
             total += discount * max(q[end_leaf])
         return total / len(records)
 
+    def blend(self, leaf: int, action: int, first: list[float], lam: float, after: float) -> bool:
+        """``TreeConfig.model_lambda``: the stored epoch of (leaf, action) that began at
+        ``first`` (the very list it was stored with) keeps ``1 - lam`` of its bootstrap and
+        takes ``lam`` of the return ``after`` it instead: R + lam D after, (1 - lam) D.
+        Returns False when the epoch is no longer stored (out of the window, dropped by a
+        split) or was terminal (nothing to blend)."""
+        key = leaf * self.n_actions + action
+        records = self._records.get(key)
+        if not records:
+            return False
+        for i, record in enumerate(records):
+            if record[0] is first:
+                begun, reward, discount, end, end_leaf = record
+                if end is None:
+                    return False
+                blended = reward + lam * discount * after
+                records[i] = (begun, blended, (1.0 - lam) * discount, end, end_leaf)
+                self._aggregate(key)
+                return True
+        return False
+
     def push(self, leaf: int, priority: float) -> None:
         """Ask for the predecessors of ``leaf`` to be backed up (largest priority first)."""
         if priority > self._priority.get(leaf, 0.0):

@@ -95,6 +95,7 @@ class SMDPAgent:
                 ("decision_steps", None),
                 ("hold_steps", None),
                 ("hold_crossings", None),
+                ("model_lambda", 0.0),
             ):
                 if getattr(self.config, name) != off:
                     raise ValueError(

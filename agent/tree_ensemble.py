@@ -40,6 +40,7 @@ from agent.exploration import Exploration, Greedy
 from agent.exploration.base import greedy_action
 from agent.learner import Bounds, SMDPAgent
 from agent.partition_tree import PartitionTree
+from agent.smdp import epoch_returns
 from agent.tree_agent import TreeAgent
 
 
@@ -123,6 +124,13 @@ class TreeEnsembleAgent(TreeAgent):
         self.crossing_steps = 0
         self.crossings = 0
         """Steps and count of the leaf crossings so far (``TreeConfig.hold_crossings``)."""
+        self._trace: list[tuple[list[float], int, float, int, bool, list[float], bool]] | None
+        self._trace = [] if self.config.model_lambda > 0.0 and self.model is not None else None
+        """This episode's model epochs in order (``TreeConfig.model_lambda``): first input,
+        action, discounted reward from the first input, length, terminal, end input, and
+        whether its action was exploratory."""
+        self._explored = False
+        """Whether the action of the epoch under way was exploratory (``model_lambda``)."""
         self.terminal_reward_sum = 0.0
         self.target_sum = 0.0
         self.targets = 0
@@ -186,6 +194,73 @@ class TreeEnsembleAgent(TreeAgent):
             return False
         return self.terminal_reward_sum / self.terminals_seen < self.target_sum / self.targets
 
+    def _end_epoch(
+        self,
+        leaf: int,
+        action: int,
+        xs: list[list[float]],
+        rs: list[float],
+        bootstrap: float,
+        end_x: list[float] | None = None,
+        terminated: bool = False,
+    ) -> bool:
+        """:meth:`SMDPAgent._end_epoch`, and with ``TreeConfig.model_lambda`` the epoch kept
+        for the episode's lambda-returns (:meth:`_blend_episode`)."""
+        if self._trace is not None and end_x is not None:
+            start = epoch_returns(rs, 0.0, self.config.gamma)[0]
+            self._trace.append((xs[0], action, start, len(rs), terminated, end_x, self._explored))
+        return super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
+
+    def _blend_episode(self, terminated: bool) -> None:
+        """``TreeConfig.model_lambda`` at the end of an episode: going back from its last
+        epoch, G_after(e) is the lambda-return after epoch e,
+
+            G_after(last) = 0 (terminal) or V-bar(s'_last) (truncated),
+            G_after(e - 1) = R0_e + gamma^tau_e [(1 - lambda) V-bar(s'_e) + lambda G_after(e)],
+
+        R0_e the epoch's discounted rewards from its first input (eq. 6) and V-bar under the
+        values now. With ``TreeConfig.model_lambda_watkins`` the return before an epoch whose
+        action was exploratory is cut there, G_after(e - 1) = V-bar(s_e) (Watkins's Q(lambda):
+        what follows an exploratory action says nothing of the greedy policy's return). Each
+        stored epoch is blended with its G_after (:meth:`LeafModel.blend`), the Q-bar of every
+        blended (leaf, action) is set to its model value, and the moved leaves are swept as
+        after an epoch."""
+        trace, self._trace = self._trace, []
+        model = self.model
+        if not trace or model is None:
+            return
+        cfg = self.config
+        lam = cfg.model_lambda
+        watkins = cfg.model_lambda_watkins
+        gamma = cfg.gamma
+        q = self.q
+        leaf_of = self.partition.leaf_of
+        after = 0.0 if terminated else max(q[leaf_of(trace[-1][5])])
+        touched: dict[tuple[int, int], None] = {}
+        for first, action, start, tau, terminal, end_x, explored in reversed(trace):
+            if terminal:
+                after = start
+            else:
+                leaf = leaf_of(first)
+                if model.blend(leaf, action, first, lam, after):
+                    touched[(leaf, action)] = None
+                v_end = max(q[leaf_of(end_x)])
+                after = start + gamma**tau * ((1.0 - lam) * v_end + lam * after)
+            if explored and watkins:  # the return before an exploratory action is cut there
+                after = max(q[leaf_of(first)])
+        tolerance = self._in_units(cfg.sweep_tolerance)
+        for leaf, action in touched:
+            row = q[leaf]
+            before = max(row)
+            modelled = model.value(leaf, action, q)
+            if modelled is None:
+                continue
+            row[action] = modelled + self._bonus(leaf, action)
+            change = abs(max(row) - before)
+            if change > tolerance:
+                model.push(leaf, change)
+        model.sweep(q, cfg.sweep_backups, tolerance, self._bonus_function())
+
     def _crossings_hold_cap(self, crossings: float) -> int:
         """``TreeConfig.hold_crossings``: ``crossings`` times the mean leaf crossing so far,
         rounded up, at least one step (at least one crossing seen)."""
@@ -219,6 +294,7 @@ class TreeEnsembleAgent(TreeAgent):
         leaves = self._leaves(x)
         action = strategy.select(leaves[0], self.mean_row(leaves), rng)
         hold = hold_exploration and strategy.explored
+        self._explored = strategy.explored
         eps_sum = strategy.epsilon(leaves[0])
         xs: list[list[float]] = []
         rs: list[float] = []
@@ -286,15 +362,19 @@ class TreeEnsembleAgent(TreeAgent):
                 if inside and not any(splits):
                     action = greedy_action(self.mean_row(leaves), rng)
                     hold = False
+                    self._explored = False
                 else:
                     action = strategy.select(leaves[0], self.mean_row(leaves), rng)
                     hold = hold_exploration and strategy.explored
+                    self._explored = strategy.explored
                 eps_sum += strategy.epsilon(leaves[0])
                 epochs += 1
                 xs = []
                 rs = []
         if terminated:
             self.terminals_seen += 1
+        if self._trace is not None:
+            self._blend_episode(terminated)
         success = bool(info["is_success"]) if "is_success" in info else bool(terminated)
         strategy.on_episode_end(success)
         for m in members[1:]:
@@ -317,13 +397,14 @@ class TreeEnsembleAgent(TreeAgent):
 
 def tree_agent_class(config: TreeConfig) -> type[TreeAgent]:
     """The tree agent a configuration asks for: :class:`TreeEnsembleAgent` when
-    ``ensemble_trees > 1`` or ``decision_steps``, ``hold_steps`` or ``hold_crossings`` is set
-    (its loop runs them), else :class:`TreeAgent`."""
+    ``ensemble_trees > 1`` or ``decision_steps``, ``hold_steps``, ``hold_crossings`` or
+    ``model_lambda`` is set (its loop runs them), else :class:`TreeAgent`."""
     if (
         config.ensemble_trees > 1
         or config.decision_steps is not None
         or config.hold_steps is not None
         or config.hold_crossings is not None
+        or config.model_lambda > 0.0
     ):
         return TreeEnsembleAgent
     return TreeAgent

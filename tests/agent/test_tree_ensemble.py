@@ -12,6 +12,7 @@ import pytest
 from gymnasium import spaces
 
 from agent import TreeAgent, TreeConfig, preset
+from agent.leaf_model import LeafModel
 from agent.tree_ensemble import (
     ShiftedPartitionTree,
     TreeEnsembleAgent,
@@ -364,3 +365,137 @@ def test_decisions_on_failure_are_checked() -> None:
         TreeConfig(decision_steps=1, decision_on_failure=1)  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="decision_from_terminal must be a bool, got 'yes'"):
         TreeConfig(decision_from_terminal="yes")  # type: ignore[arg-type]
+
+
+def test_a_blended_model_epoch_takes_lambda_of_the_return_after_it() -> None:
+    model = LeafModel(n_actions=2, window=4)
+    first = [0.1]
+    model.add(0, 1, first, -2.0, 0.5, [0.6], 3)
+    model.add(0, 1, [0.2], -1.0, 0.25, None, -1)  # terminal: nothing to blend
+    q = [[0.0, 0.0] for _ in range(4)]
+    q[3] = [-8.0, -6.0]
+    assert model.value(0, 1, q) == ((-2.0 + 0.5 * -6.0) + -1.0) / 2
+    assert model.blend(0, 1, first, 0.25, -10.0)
+    # R + lam D after = -2 - 1.25, D (1 - lam) = 0.375
+    assert model.value(0, 1, q) == ((-3.25 + 0.375 * -6.0) + -1.0) / 2
+    assert not model.blend(0, 1, [0.2], 0.25, -10.0)  # the terminal epoch
+    assert not model.blend(0, 1, [0.1], 0.25, -10.0)  # an equal list is not the stored one
+    assert not model.blend(1, 1, first, 0.25, -10.0)  # nothing stored there
+
+
+def test_model_lambda_one_makes_a_leaf_value_the_episodes_own_return() -> None:
+    # Greedy takes action 1: 5 steps to x = 0.52 (the split at 0.5), 5 more to the end.
+    env = Walk()
+    config = plain_config(planning="sweep", sweep_backups=8, gamma=0.5, model_lambda=1.0)
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    assert isinstance(agent, TreeEnsembleAgent)
+    for row in agent.q:
+        row[:] = [-1e6, 0.0]
+    left, right = agent.partition.leaf_of([0.1]), agent.partition.leaf_of([0.9])
+    agent.learn(env, 1, reset_seed=0)
+    gamma = 0.5
+    after = -sum(gamma**j for j in range(5))  # the second epoch, from its first input
+    # every input k of the first epoch: its rewards to the crossing, then the observed return
+    returns = [-sum(gamma**j for j in range(5 - k)) + gamma ** (5 - k) * after for k in range(5)]
+    assert agent.q[left][1] == pytest.approx(sum(returns) / 5, abs=1e-12)
+    # the terminal epoch has no bootstrap: eq. (8)'s mean over its inputs, as without lambda
+    tail = [-sum(gamma**j for j in range(5 - k)) for k in range(5)]
+    assert agent.q[right][1] == pytest.approx(sum(tail) / 5, abs=1e-12)
+    # without the option the first epoch bootstraps from the right leaf's value at its end (0)
+    plain = plain_config(planning="sweep", sweep_backups=8, gamma=0.5)
+    other = tree_agent_class(plain)(env.observation_space, env.action_space, "greedy", 0, plain)
+    for row in other.q:
+        row[:] = [-1e6, 0.0]
+    other.learn(env, 1, reset_seed=0)
+    assert other.q[right][1] == agent.q[right][1]
+    assert other.q[left][1] != pytest.approx(agent.q[left][1])
+
+
+class Timeout(Walk):
+    """Walk cut by a time limit after 5 steps (a truncation: the last epoch bootstraps)."""
+
+    def reset(self, *, seed: int | None = None, options: Any = None) -> tuple[np.ndarray, dict]:
+        self.steps = 0
+        return super().reset(seed=seed, options=options)
+
+    def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict]:
+        self.steps += 1
+        obs, reward, terminated, _, info = super().step(action)
+        return obs, reward, terminated, self.steps >= 5, info
+
+
+def test_model_lambda_bootstraps_a_truncated_episode_from_the_value_where_it_stopped() -> None:
+    # The one epoch (x = 0.02 -> 0.52, 5 steps) ends at the time limit in the right leaf,
+    # whose value -4 was set by hand and never learnt in the episode: the return after the
+    # epoch is that V-bar, so lambda = 1 gives the one-step value.
+    env = Timeout()
+    config = plain_config(planning="sweep", sweep_backups=8, gamma=0.5, model_lambda=1.0)
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    for row in agent.q:
+        row[:] = [-1e6, 0.0]
+    left, right = agent.partition.leaf_of([0.1]), agent.partition.leaf_of([0.9])
+    agent.q[right][1] = -4.0
+    stats = agent.learn(env, 1, reset_seed=0)[0]
+    assert stats.truncated
+    assert stats.steps == 5
+    gamma = 0.5
+    returns = [-sum(gamma**j for j in range(5 - k)) + gamma ** (5 - k) * -4.0 for k in range(5)]
+    assert agent.q[left][1] == pytest.approx(sum(returns) / 5, abs=1e-12)
+    assert agent.q[right][1] == -4.0
+
+
+@pytest.mark.parametrize(("watkins", "expected"), [(False, -1.75), (True, -1.625)])
+def test_model_lambda_watkins_cuts_the_return_at_an_exploratory_epoch(
+    watkins: bool, expected: float
+) -> None:
+    # Epoch A: one greedy step in the left leaf (-1) into the right leaf; epoch B: an
+    # exploratory action there, two steps (-1, -1) to the end. gamma 0.5, lambda 1.
+    env = Walk()
+    config = plain_config(
+        planning="sweep", sweep_backups=8, gamma=0.5, model_lambda=1.0, model_lambda_watkins=watkins
+    )
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    assert isinstance(agent, TreeEnsembleAgent)
+    for row in agent.q:
+        row[:] = [-1e6, 0.0]
+    left, right = agent.partition.leaf_of([0.1]), agent.partition.leaf_of([0.9])
+    agent._explored = False
+    agent._end_epoch(left, 1, [[0.1]], [-1.0], 0.0, [0.6], False)
+    agent._explored = True
+    agent._end_epoch(right, 1, [[0.6], [0.8]], [-1.0, -1.0], 0.0, [1.0], True)
+    assert agent.q[right][1] == (-1.5 + -1.0) / 2  # eq. (8): the mean over B's two inputs
+    agent._blend_episode(terminated=True)
+    # on-policy: A's return after it is B's own, -1.5: -1 + 0.5 x -1.5; Watkins: V-bar where
+    # B began, the right leaf's -1.25: -1 + 0.5 x -1.25
+    assert agent.q[left][1] == expected
+
+
+@pytest.mark.parametrize(
+    ("changes", "defect"),
+    [
+        ({"model_lambda_watkins": True}, r"model_lambda_watkins = True needs model_lambda > 0"),
+        (
+            {"model_lambda": 1.5, "planning": "sweep"},
+            r"model_lambda must be a number in \[0, 1\], got 1\.5",
+        ),
+        (
+            {"model_lambda": True, "planning": "sweep"},
+            r"model_lambda must be a number in \[0, 1\], got True",
+        ),
+        ({"model_lambda": "0.5", "planning": "sweep"}, r"got '0\.5'"),
+        ({"model_lambda": float("nan"), "planning": "sweep"}, r"got nan"),
+        ({"model_lambda": 0.5}, r"model_lambda = 0\.5 needs planning = 'sweep'"),
+        (
+            {
+                "model_lambda": 0.5,
+                "planning": "sweep",
+                "ensemble_trees": 2,
+                "presplit_each_dimension": True,
+            },
+            r"model_lambda = 0\.5 works with one tree only",
+        ),
+    ],
+)
+def test_model_lambda_is_checked(changes: dict[str, Any], defect: str) -> None:
+    with pytest.raises(ValueError, match=defect):
+        TreeConfig(**changes)
