@@ -143,6 +143,11 @@ class TreeConfig:
     there, as Watkins's Q(lambda) cuts its traces (the return then is V-bar where the
     exploratory action began). False: the episode's return as it happened, exploratory
     actions included (the on-policy reading, as Sarsa(lambda) and Peng's Q(lambda))."""
+    model_lambda_tried_only: bool = False
+    """With ``model_lambda``: the return is cut at the end of an epoch whose end leaf has an
+    action the model holds no epoch of (G after it is that leaf's V-bar), so the optimism of
+    an untried action (``q_init`` above every value learnt) reaches the leaves before it
+    through the one-step backups as without the option."""
     decision_steps: int | None = None
     """An epoch of an action that is not a held exploratory run ends after this many steps
     (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
@@ -250,12 +255,18 @@ class TreeConfig:
                 f"TreeConfig.model_lambda = {lam!r} works with one tree only, got "
                 f"ensemble_trees = {self.ensemble_trees!r}"
             )
-        if self.model_lambda_watkins is True and lam == 0.0:
-            raise ValueError(
-                "TreeConfig.model_lambda_watkins = True needs model_lambda > 0 "
-                "(it cuts the returns model_lambda blends in)"
-            )
-        for name in ("decision_from_terminal", "decision_on_failure", "model_lambda_watkins"):
+        for name in ("model_lambda_watkins", "model_lambda_tried_only"):
+            if getattr(self, name) is True and lam == 0.0:
+                raise ValueError(
+                    f"TreeConfig.{name} = True needs model_lambda > 0 "
+                    "(it cuts the returns model_lambda blends in)"
+                )
+        for name in (
+            "decision_from_terminal",
+            "decision_on_failure",
+            "model_lambda_watkins",
+            "model_lambda_tried_only",
+        ):
             if not isinstance(getattr(self, name), bool):
                 raise TypeError(f"TreeConfig.{name} must be a bool, got {getattr(self, name)!r}")
         if self.decision_on_failure and self.decision_steps is None:

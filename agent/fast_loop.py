@@ -122,6 +122,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     # the agent a TreeEnsembleAgent
     "model_lambda": (float, int),
     "model_lambda_watkins": bool,
+    "model_lambda_tried_only": bool,
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
     "decision_steps": (int, type(None)),

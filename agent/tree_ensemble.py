@@ -221,7 +221,9 @@ class TreeEnsembleAgent(TreeAgent):
         R0_e the epoch's discounted rewards from its first input (eq. 6) and V-bar under the
         values now. With ``TreeConfig.model_lambda_watkins`` the return before an epoch whose
         action was exploratory is cut there, G_after(e - 1) = V-bar(s_e) (Watkins's Q(lambda):
-        what follows an exploratory action says nothing of the greedy policy's return). Each
+        what follows an exploratory action says nothing of the greedy policy's return). With
+        ``TreeConfig.model_lambda_tried_only`` the return is cut, G_after(e) = V-bar(s'_e), where
+        epoch e ends in a leaf with an action the model has no epoch of. Each
         stored epoch is blended with its G_after (:meth:`LeafModel.blend`), the Q-bar of every
         blended (leaf, action) is set to its model value, and the moved leaves are swept as
         after an epoch."""
@@ -232,6 +234,8 @@ class TreeEnsembleAgent(TreeAgent):
         cfg = self.config
         lam = cfg.model_lambda
         watkins = cfg.model_lambda_watkins
+        tried_only = cfg.model_lambda_tried_only
+        actions = range(self.n_actions)
         gamma = cfg.gamma
         q = self.q
         leaf_of = self.partition.leaf_of
@@ -241,10 +245,13 @@ class TreeEnsembleAgent(TreeAgent):
             if terminal:
                 after = start
             else:
+                end_leaf = leaf_of(end_x)
+                v_end = max(q[end_leaf])
+                if tried_only and any(model.count(end_leaf, a) == 0 for a in actions):
+                    after = v_end  # an untried action's optimism stays in the bootstrap
                 leaf = leaf_of(first)
                 if model.blend(leaf, action, first, lam, after):
                     touched[(leaf, action)] = None
-                v_end = max(q[leaf_of(end_x)])
                 after = start + gamma**tau * ((1.0 - lam) * v_end + lam * after)
             if explored and watkins:  # the return before an exploratory action is cut there
                 after = max(q[leaf_of(first)])

@@ -470,10 +470,38 @@ def test_model_lambda_watkins_cuts_the_return_at_an_exploratory_epoch(
     assert agent.q[left][1] == expected
 
 
+@pytest.mark.parametrize(("both_tried", "expected"), [(False, -1.625), (True, -1.75)])
+def test_model_lambda_tried_only_keeps_the_bootstrap_where_an_action_is_untried(
+    both_tried: bool, expected: float
+) -> None:
+    # Epoch A: one step in the left leaf (-1) into the right leaf; epoch B: two steps there
+    # (-1, -1) to the end. gamma 0.5, lambda 1. The right leaf's action 0 is untried unless an
+    # epoch of it is stored first (a terminal one: -3, not A's bootstrap, which is the max).
+    env = Walk()
+    config = plain_config(
+        planning="sweep", sweep_backups=8, gamma=0.5, model_lambda=1.0, model_lambda_tried_only=True
+    )
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    assert isinstance(agent, TreeEnsembleAgent)
+    for row in agent.q:
+        row[:] = [-1e6, 0.0]
+    left, right = agent.partition.leaf_of([0.1]), agent.partition.leaf_of([0.9])
+    if both_tried:
+        agent._end_epoch(right, 0, [[0.7]], [-3.0], 0.0, [1.0], True)
+        agent._trace = []  # an earlier episode's
+    agent._end_epoch(left, 1, [[0.1]], [-1.0], 0.0, [0.6], False)
+    agent._end_epoch(right, 1, [[0.6], [0.8]], [-1.0, -1.0], 0.0, [1.0], True)
+    agent._blend_episode(terminated=True)
+    # untried: the one-step value -1 + 0.5 x V-bar(right) = -1 + 0.5 x -1.25; both tried: the
+    # episode's own return after A, -1 + 0.5 x -1.5
+    assert agent.q[left][1] == expected
+
+
 @pytest.mark.parametrize(
     ("changes", "defect"),
     [
         ({"model_lambda_watkins": True}, r"model_lambda_watkins = True needs model_lambda > 0"),
+        ({"model_lambda_tried_only": True}, r"model_lambda_tried_only = True needs model_lambda"),
         (
             {"model_lambda": 1.5, "planning": "sweep"},
             r"model_lambda must be a number in \[0, 1\], got 1\.5",
@@ -499,3 +527,9 @@ def test_model_lambda_watkins_cuts_the_return_at_an_exploratory_epoch(
 def test_model_lambda_is_checked(changes: dict[str, Any], defect: str) -> None:
     with pytest.raises(ValueError, match=defect):
         TreeConfig(**changes)
+
+
+def test_model_lambda_cuts_must_be_bools() -> None:
+    for name in ("model_lambda_watkins", "model_lambda_tried_only"):
+        with pytest.raises(TypeError, match=rf"{name} must be a bool, got 1"):
+            TreeConfig(model_lambda=0.5, planning="sweep", **{name: 1})
