@@ -444,21 +444,25 @@ def test_model_lambda_bootstraps_a_truncated_episode_from_the_value_where_it_sto
     assert agent.q[right][1] == -4.0
 
 
+def _lambda_one_agent(**changes: Any) -> tuple[TreeEnsembleAgent, int, int]:
+    """A model agent with lambda 1 and gamma 0.5 on the walk, its values at q_init's 0 (action
+    1 greedy), and its left and right leaves."""
+    env = Walk()
+    config = plain_config(planning="sweep", sweep_backups=8, gamma=0.5, model_lambda=1.0, **changes)
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
+    assert isinstance(agent, TreeEnsembleAgent)
+    for row in agent.q:
+        row[:] = [-1e6, 0.0]
+    return agent, agent.partition.leaf_of([0.1]), agent.partition.leaf_of([0.9])
+
+
 @pytest.mark.parametrize(("watkins", "expected"), [(False, -1.75), (True, -1.625)])
 def test_model_lambda_watkins_cuts_the_return_at_an_exploratory_epoch(
     watkins: bool, expected: float
 ) -> None:
     # Epoch A: one greedy step in the left leaf (-1) into the right leaf; epoch B: an
     # exploratory action there, two steps (-1, -1) to the end. gamma 0.5, lambda 1.
-    env = Walk()
-    config = plain_config(
-        planning="sweep", sweep_backups=8, gamma=0.5, model_lambda=1.0, model_lambda_watkins=watkins
-    )
-    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
-    assert isinstance(agent, TreeEnsembleAgent)
-    for row in agent.q:
-        row[:] = [-1e6, 0.0]
-    left, right = agent.partition.leaf_of([0.1]), agent.partition.leaf_of([0.9])
+    agent, left, right = _lambda_one_agent(model_lambda_watkins=watkins)
     agent._explored = False
     agent._end_epoch(left, 1, [[0.1]], [-1.0], 0.0, [0.6], False)
     agent._explored = True
@@ -477,15 +481,7 @@ def test_model_lambda_tried_only_keeps_the_bootstrap_where_an_action_is_untried(
     # Epoch A: one step in the left leaf (-1) into the right leaf; epoch B: two steps there
     # (-1, -1) to the end. gamma 0.5, lambda 1. The right leaf's action 0 is untried unless an
     # epoch of it is stored first (a terminal one: -3, not A's bootstrap, which is the max).
-    env = Walk()
-    config = plain_config(
-        planning="sweep", sweep_backups=8, gamma=0.5, model_lambda=1.0, model_lambda_tried_only=True
-    )
-    agent = tree_agent_class(config)(env.observation_space, env.action_space, "greedy", 0, config)
-    assert isinstance(agent, TreeEnsembleAgent)
-    for row in agent.q:
-        row[:] = [-1e6, 0.0]
-    left, right = agent.partition.leaf_of([0.1]), agent.partition.leaf_of([0.9])
+    agent, left, right = _lambda_one_agent(model_lambda_tried_only=True)
     if both_tried:
         agent._end_epoch(right, 0, [[0.7]], [-3.0], 0.0, [1.0], True)
         agent._trace = []  # an earlier episode's

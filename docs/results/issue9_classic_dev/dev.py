@@ -5,7 +5,7 @@ One job: the general preset's config with ``overrides``, agent seed s, first res
 tests/agent/test_classic_learning.py). Each job appends one JSON line to ``results.jsonl``
 (greedy mean, training mean of the last 100 episodes, leaves, CPU seconds, steps, and from
 the third batch on every greedy episode's return; a second argument names another output
-file)::
+file; a job's optional "x" names another exploration strategy and its parameters)::
 
     PYTHONPATH=. nice -n 10 python docs/results/issue9_classic_dev/dev.py \
         '[{"task": "CartPole-v1", "label": "dec1gT", "seed": 0,
@@ -25,6 +25,7 @@ import gymnasium as gym
 import numpy as np
 
 from agent import preset
+from agent.exploration import make_exploration
 from agent.tree_ensemble import tree_agent_class
 
 OUT = Path(__file__).with_name("results.jsonl")
@@ -51,12 +52,18 @@ def run(
     seed: int,
     episodes: int = 1000,
     out: Path = OUT,
+    exploration: dict[str, Any] | None = None,
 ) -> None:
     general = preset("general")
     config = dataclasses.replace(general.config, **overrides)
     env = gym.make(task)
+    if exploration is None:
+        strategy = general.make_exploration()
+    else:
+        params = dict(exploration)
+        strategy = make_exploration(params.pop("name"), **params)
     agent = tree_agent_class(config)(
-        env.observation_space, env.action_space, general.make_exploration(), seed, config
+        env.observation_space, env.action_space, strategy, seed, config
     )
     start = time.process_time()
     history = agent.learn(env, episodes, reset_seed=seed)
@@ -66,6 +73,7 @@ def run(
         "task": task,
         "label": label,
         "overrides": overrides,
+        **({} if exploration is None else {"exploration": exploration}),
         "seed": seed,
         "greedy": round(float(np.mean(returns)), 1),
         "train_last100": round(float(np.mean([h.episode_return for h in history[-100:]])), 1),
@@ -81,4 +89,11 @@ def run(
 if __name__ == "__main__":
     target = Path(sys.argv[2]) if len(sys.argv) > 2 else OUT
     for job in json.loads(sys.argv[1]):
-        run(job["task"], job["label"], job.get("o", {}), job["seed"], out=target)
+        run(
+            job["task"],
+            job["label"],
+            job.get("o", {}),
+            job["seed"],
+            out=target,
+            exploration=job.get("x"),
+        )
