@@ -39,6 +39,11 @@ def _children(pid: int) -> set[int]:
     return found
 
 
+def _default_sigint() -> None:
+    """In a child before it runs: SIGINT back to its default (see the Ctrl-C test)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _wait_for(condition, timeout: float = 60.0) -> None:
     deadline = time.monotonic() + timeout
     while not condition():
@@ -127,10 +132,7 @@ def test_the_drivers_death_takes_its_workers_with_it(small_config, tmp_path: Pat
 
 
 def test_ctrl_c_keeps_finished_runs_and_ends_the_workers(standins, tmp_path: Path):
-    # runs long enough that work is left when the interrupt lands, even on a loaded machine
-    # (with 20 episodes a run the last runs once finished before SIGINT arrived, under a CI
-    # load of two other processes)
-    config = standins.tiny_config(tmp_path, episodes=80, cap=300, runs=3)
+    config = standins.tiny_config(tmp_path, episodes=20, cap=300, runs=3)
     out = tmp_path / "interrupted"
     command = [
         sys.executable,
@@ -143,8 +145,17 @@ def test_ctrl_c_keeps_finished_runs_and_ends_the_workers(standins, tmp_path: Pat
         "--out",
         str(out),
     ]
+    # A user's Ctrl-C reaches a foreground process. A test runner started in the background
+    # (`cmd &` in a script) ignores SIGINT, and its children inherit that: Python then installs
+    # no KeyboardInterrupt handler and the experiment would run to its end. So the driver
+    # starts with SIGINT at its default, as in a terminal.
     driver = subprocess.Popen(
-        command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        command,
+        cwd=ROOT,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=_default_sigint,
     )
     _wait_for(lambda: list((out / "runs").glob("*.json")))
     helpers = _children(driver.pid)
