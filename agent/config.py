@@ -201,21 +201,12 @@ class TreeConfig:
         _check_range("gamma", self.gamma, 0.0, 1.0)
         if not math.isfinite(self.q_init):
             raise ValueError(f"TreeConfig.q_init must be finite, got {self.q_init!r}")
-        if self.max_epoch_steps is not None and (
-            not isinstance(self.max_epoch_steps, int) or self.max_epoch_steps < 1
-        ):
-            raise ValueError(
-                f"TreeConfig.max_epoch_steps must be a positive int or None, "
-                f"got {self.max_epoch_steps!r}"
-            )
-        if self.hold_steps is not None and (
-            isinstance(self.hold_steps, bool)
-            or not isinstance(self.hold_steps, int)
-            or self.hold_steps < 1
-        ):
-            raise ValueError(
-                f"TreeConfig.hold_steps must be a positive int or None, got {self.hold_steps!r}"
-            )
+        for name in ("max_epoch_steps", "hold_steps", "decision_steps"):
+            steps = getattr(self, name)
+            if steps is not None and (
+                isinstance(steps, bool) or not isinstance(steps, int) or steps < 1
+            ):
+                raise ValueError(f"TreeConfig.{name} must be a positive int or None, got {steps!r}")
         crossings = self.hold_crossings
         if crossings is not None:
             if (
@@ -233,15 +224,6 @@ class TreeConfig:
                     f"TreeConfig.hold_crossings = {crossings!r} and hold_steps = "
                     f"{self.hold_steps!r}: set one of them (both cap a held run)"
                 )
-        if self.decision_steps is not None and (
-            isinstance(self.decision_steps, bool)
-            or not isinstance(self.decision_steps, int)
-            or self.decision_steps < 1
-        ):
-            raise ValueError(
-                f"TreeConfig.decision_steps must be a positive int or None, "
-                f"got {self.decision_steps!r}"
-            )
         lam = self.model_lambda
         if isinstance(lam, bool) or not isinstance(lam, int | float) or not 0.0 <= lam <= 1.0:
             raise ValueError(f"TreeConfig.model_lambda must be a number in [0, 1], got {lam!r}")

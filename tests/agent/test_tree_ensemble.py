@@ -529,3 +529,10 @@ def test_model_lambda_cuts_must_be_bools() -> None:
     for name in ("model_lambda_watkins", "model_lambda_tried_only"):
         with pytest.raises(TypeError, match=rf"{name} must be a bool, got 1"):
             TreeConfig(model_lambda=0.5, planning="sweep", **{name: 1})
+
+
+@pytest.mark.parametrize("name", ["max_epoch_steps", "hold_steps", "decision_steps"])
+@pytest.mark.parametrize("value", [True, 0, -3, 2.5, "5"])
+def test_step_counts_are_positive_ints_or_none(name: str, value: object) -> None:
+    with pytest.raises(ValueError, match=rf"TreeConfig\.{name} must be a positive int or None"):
+        TreeConfig(**{name: value})
