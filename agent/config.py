@@ -315,6 +315,16 @@ class TreeConfig:
             if not math.isfinite(value):
                 raise ValueError(f"TreeConfig.{name} must be finite, got {value!r}")
 
+    def loop_options(self) -> dict[str, Any]:
+        """The options set here that only the tree ensemble's loop runs
+        (``agent.tree_ensemble.TreeEnsembleAgent``), each with its value; empty when the plain
+        loop runs this configuration. The one list of them (:data:`LOOP_OPTIONS`)."""
+        return {
+            name: getattr(self, name)
+            for name, off in LOOP_OPTIONS.items()
+            if getattr(self, name) != off
+        }
+
     def to_dict(self) -> dict[str, Any]:
         """The fields as a JSON-ready dict."""
         return dataclasses.asdict(self)
@@ -327,6 +337,16 @@ class TreeConfig:
         if unknown:
             raise ValueError(f"unknown TreeConfig fields {unknown}; known: {sorted(known)}")
         return cls(**data)
+
+
+LOOP_OPTIONS: dict[str, Any] = {
+    "ensemble_trees": 1,
+    "decision_steps": None,
+    "hold_steps": None,
+    "hold_crossings": None,
+    "model_lambda": 0.0,
+}
+"""Each ``TreeConfig`` option that only the tree ensemble's loop runs, with its off value."""
 
 
 def _check_range(

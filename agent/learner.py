@@ -90,19 +90,12 @@ class SMDPAgent:
         if not isinstance(self.config, TreeConfig):
             raise TypeError(f"config must be a TreeConfig, got {type(self.config).__name__}")
         if not self.ensembles:
-            for name, off in (
-                ("ensemble_trees", 1),
-                ("decision_steps", None),
-                ("hold_steps", None),
-                ("hold_crossings", None),
-                ("model_lambda", 0.0),
-            ):
-                if getattr(self.config, name) != off:
-                    raise ValueError(
-                        f"TreeConfig.{name} = {getattr(self.config, name)} needs "
-                        f"agent.tree_ensemble.TreeEnsembleAgent, not {type(self).__name__} "
-                        "(agent.tree_ensemble.tree_agent_class(config) picks the class)"
-                    )
+            for name, value in self.config.loop_options().items():
+                raise ValueError(
+                    f"TreeConfig.{name} = {value} needs "
+                    f"agent.tree_ensemble.TreeEnsembleAgent, not {type(self).__name__} "
+                    "(agent.tree_ensemble.tree_agent_class(config) picks the class)"
+                )
         if isinstance(exploration, str):
             exploration = make_exploration(exploration)
         elif not isinstance(exploration, Exploration):
@@ -571,12 +564,7 @@ class SMDPAgent:
             pending += agent_class.__subclasses__()
         found = kinds.get(saved.kind)
         config = saved.config
-        if (
-            config.ensemble_trees > 1
-            or config.decision_steps is not None
-            or config.hold_steps is not None
-            or config.hold_crossings is not None
-        ):  # the loop options' class (agent.tree_ensemble), found without importing it
+        if config.loop_options():  # their class (agent.tree_ensemble), found without importing it
             seen: list[type[SMDPAgent]] = [SMDPAgent]
             while seen:
                 agent_class = seen.pop()

@@ -403,15 +403,7 @@ class TreeEnsembleAgent(TreeAgent):
 
 
 def tree_agent_class(config: TreeConfig) -> type[TreeAgent]:
-    """The tree agent a configuration asks for: :class:`TreeEnsembleAgent` when
-    ``ensemble_trees > 1`` or ``decision_steps``, ``hold_steps``, ``hold_crossings`` or
-    ``model_lambda`` is set (its loop runs them), else :class:`TreeAgent`."""
-    if (
-        config.ensemble_trees > 1
-        or config.decision_steps is not None
-        or config.hold_steps is not None
-        or config.hold_crossings is not None
-        or config.model_lambda > 0.0
-    ):
-        return TreeEnsembleAgent
-    return TreeAgent
+    """The tree agent a configuration asks for: :class:`TreeEnsembleAgent` when any of its
+    loop options is set (``TreeConfig.loop_options``: its loop runs them), else
+    :class:`TreeAgent`."""
+    return TreeEnsembleAgent if config.loop_options() else TreeAgent

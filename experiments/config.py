@@ -1182,8 +1182,8 @@ class _Reader:
             params = {**named.exploration_params, **params}
         config = dict(self.value(raw, where, "config", dict, {}))
         _agent_check(lambda: exploration_from_data(exploration, params, f"{prefix} exploration"))
-        if config:
-            _agent_check(lambda: config_from_data(config, f"{prefix} config"))
+        # the strategy's config is checked on top of its preset or [agent] only: alone, a field
+        # that needs another (model_lambda needs the preset's planning = "sweep") is refused
         base = preset_config(named) if named is not None else dict(agent)
         under = f"preset {preset!r}" if named is not None else "[agent]"
         _agent_check(lambda: config_from_data({**base, **config}, f"{prefix} {under} + config"))

@@ -411,6 +411,28 @@ def test_model_lambda_one_makes_a_leaf_value_the_episodes_own_return() -> None:
     assert other.q[left][1] != pytest.approx(agent.q[left][1])
 
 
+def test_a_model_lambda_agent_saves_loads_and_continues_bit_for_bit(tmp_path: Any) -> None:
+    """Every loop option is found by one list (TreeConfig.loop_options): a file of a
+    model_lambda agent loads as the ensemble's loop, and learns on exactly as the original."""
+    env = Walk()
+    config = plain_config(planning="sweep", sweep_backups=8, gamma=0.9, model_lambda=0.5)
+    assert config.loop_options() == {"model_lambda": 0.5}
+    assert plain_config().loop_options() == {}
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, "epsilon-greedy", 3, config
+    )
+    agent.learn(env, 3, reset_seed=0)
+    loaded = TreeAgent.load(agent.save(tmp_path / "lambda.npz"))
+    assert type(loaded) is TreeEnsembleAgent
+    assert loaded.config == config
+    assert loaded.q == agent.q
+    ahead = [s.steps for s in agent.learn(env, 3, reset_seed=7)]
+    assert [s.steps for s in loaded.learn(env, 3, reset_seed=7)] == ahead
+    assert loaded.q == agent.q
+    with pytest.raises(ValueError, match=r"model_lambda = 0.5 needs agent\.tree_ensemble"):
+        TreeAgent(env.observation_space, env.action_space, "greedy", 0, config)
+
+
 class Timeout(Walk):
     """Walk cut by a time limit after 5 steps (a truncation: the last epoch bootstraps)."""
 

@@ -90,6 +90,19 @@ def test_a_preset_strategy_takes_its_own_changes():
     assert factory.agent_config(config, other) == preset("general").config
 
 
+def test_a_strategy_config_is_checked_on_top_of_its_preset():
+    """A field that needs another of the preset's (model_lambda needs planning = "sweep") is
+    accepted on the general preset and refused, naming both, on [agent] without sweeping."""
+    config = _parse({"name": "lam", "preset": "general", "config": {"model_lambda": 0.5}})
+    tree = factory.agent_config(config, config.strategies[-1])
+    assert tree == dataclasses.replace(preset("general").config, model_lambda=0.5)
+    with pytest.raises(ConfigError) as error:
+        _parse({"name": "lam", "config": {"model_lambda": 0.5}})
+    message = str(error.value)
+    assert message.startswith("kinds.toml: [strategy.1] [agent] + config"), message
+    assert "needs planning = 'sweep'" in message, message
+
+
 def test_named_and_spelt_out_presets_are_the_same_run():
     """``general_paper.toml`` spells the general preset out: naming it gives the same run
     fingerprint (the resolved settings), so either file's runs are the other's."""
