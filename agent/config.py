@@ -148,6 +148,21 @@ class TreeConfig:
     action the model holds no epoch of (G after it is that leaf's V-bar), so the optimism of
     an untried action (``q_init`` above every value learnt) reaches the leaves before it
     through the one-step backups as without the option."""
+    model_lambda_episodes: int | None = None
+    """With ``model_lambda``: each blended epoch gets its one-step form ``R, D`` back after
+    this many later episodes, while it is still stored (beyond the paper; None: a blend stays
+    as long as its epoch). A lambda-return is a sample of the policy that made it: early in
+    learning that policy is poor and its returns low, and a blend kept for the epoch's whole
+    time in the window (``model_window`` epochs of its leaf and action) holds the leaf's value
+    down after the policy has improved. Recent blends carry a new return back fast; the
+    one-step backups then take over."""
+    model_lambda_lower_bound: bool = False
+    """With ``model_lambda``: the return after an epoch is never taken below the value where
+    the epoch ended, ``G_after = max(G_after, V-bar(s'))`` at each step of the backward pass
+    (beyond the paper). A return longer than the value the model already holds for its end
+    state is then a sample of a worse policy (an exploratory detour, a failed run), not
+    evidence against the value; a return shorter than it still pulls the leaf's value up at
+    once. False: the return as it happened."""
     decision_steps: int | None = None
     """An epoch of an action that is not a held exploratory run ends after this many steps
     (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
@@ -237,7 +252,21 @@ class TreeConfig:
                 f"TreeConfig.model_lambda = {lam!r} works with one tree only, got "
                 f"ensemble_trees = {self.ensemble_trees!r}"
             )
-        for name in ("model_lambda_watkins", "model_lambda_tried_only"):
+        kept = self.model_lambda_episodes
+        if kept is not None and (isinstance(kept, bool) or not isinstance(kept, int) or kept < 1):
+            raise ValueError(
+                f"TreeConfig.model_lambda_episodes must be a positive int or None, got {kept!r}"
+            )
+        if kept is not None and lam == 0.0:
+            raise ValueError(
+                f"TreeConfig.model_lambda_episodes = {kept!r} needs model_lambda > 0 "
+                "(it undoes the blends model_lambda makes)"
+            )
+        for name in (
+            "model_lambda_watkins",
+            "model_lambda_tried_only",
+            "model_lambda_lower_bound",
+        ):
             if getattr(self, name) is True and lam == 0.0:
                 raise ValueError(
                     f"TreeConfig.{name} = True needs model_lambda > 0 "
@@ -248,6 +277,7 @@ class TreeConfig:
             "decision_on_failure",
             "model_lambda_watkins",
             "model_lambda_tried_only",
+            "model_lambda_lower_bound",
         ):
             if not isinstance(getattr(self, name), bool):
                 raise TypeError(f"TreeConfig.{name} must be a bool, got {getattr(self, name)!r}")

@@ -123,6 +123,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_lambda": (float, int),
     "model_lambda_watkins": bool,
     "model_lambda_tried_only": bool,
+    "model_lambda_episodes": (int, type(None)),
+    "model_lambda_lower_bound": bool,
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
     "decision_steps": (int, type(None)),

@@ -95,26 +95,62 @@ class LeafModel:
             total += discount * max(q[end_leaf])
         return total / len(records)
 
-    def blend(self, leaf: int, action: int, first: list[float], lam: float, after: float) -> bool:
+    def locate(self, leaf: int, action: int, first: list[float]) -> int | None:
+        """The place in the window of (leaf, action) of the stored epoch that began at
+        ``first`` (the very list it was stored with; an equal list is another epoch), or None
+        when it is not stored there."""
+        records = self._records.get(leaf * self.n_actions + action)
+        if records:
+            for i, record in enumerate(records):
+                if record[0] is first:
+                    return i
+        return None
+
+    def first_input(self, key: int, index: int) -> list[float]:
+        """The first input of the stored epoch at ``index`` in the window of ``key`` (the
+        list :meth:`locate` finds it by); a KeyError or IndexError where there is none."""
+        records = self._records[key]
+        if not 0 <= index < len(records):
+            raise IndexError(f"key {key} holds {len(records)} epochs, not one at {index}")
+        return records[index][0]
+
+    def blend(
+        self, leaf: int, action: int, first: list[float], lam: float, after: float
+    ) -> tuple[float, float] | None:
         """``TreeConfig.model_lambda``: the stored epoch of (leaf, action) that began at
         ``first`` (the very list it was stored with) keeps ``1 - lam`` of its bootstrap and
         takes ``lam`` of the return ``after`` it instead: R + lam D after, (1 - lam) D.
-        Returns False when the epoch is no longer stored (out of the window, dropped by a
-        split) or was terminal (nothing to blend)."""
+        Returns the epoch's R and D before the blend (:meth:`restore` puts them back), or None
+        when the epoch is no longer stored (out of the window, dropped by a split) or was
+        terminal (nothing to blend)."""
+        i = self.locate(leaf, action, first)
+        if i is None:
+            return None
         key = leaf * self.n_actions + action
-        records = self._records.get(key)
-        if not records:
+        records = self._records[key]
+        begun, reward, discount, end, end_leaf = records[i]
+        if end is None:
+            return None
+        blended = reward + lam * discount * after
+        records[i] = (begun, blended, (1.0 - lam) * discount, end, end_leaf)
+        self._aggregate(key)
+        return reward, discount
+
+    def restore(
+        self, leaf: int, action: int, first: list[float], reward: float, discount: float
+    ) -> bool:
+        """``TreeConfig.model_lambda_episodes``: the stored epoch of (leaf, action) that began
+        at ``first`` takes ``reward`` and ``discount`` (its form before :meth:`blend`) back.
+        Returns False when it is no longer stored."""
+        i = self.locate(leaf, action, first)
+        if i is None:
             return False
-        for i, record in enumerate(records):
-            if record[0] is first:
-                begun, reward, discount, end, end_leaf = record
-                if end is None:
-                    return False
-                blended = reward + lam * discount * after
-                records[i] = (begun, blended, (1.0 - lam) * discount, end, end_leaf)
-                self._aggregate(key)
-                return True
-        return False
+        key = leaf * self.n_actions + action
+        records = self._records[key]
+        begun, _, _, end, end_leaf = records[i]
+        records[i] = (begun, reward, discount, end, end_leaf)
+        self._aggregate(key)
+        return True
 
     def push(self, leaf: int, priority: float) -> None:
         """Ask for the predecessors of ``leaf`` to be backed up (largest priority first)."""

@@ -538,6 +538,8 @@ class SMDPAgent:
                     "target_sum": getattr(self, "target_sum", 0.0),
                     "targets": getattr(self, "targets", 0),
                 }
+                if self.config.model_lambda_episodes is not None and hasattr(self, "blend_state"):
+                    learner["loop"]["blended"] = self.blend_state()
             if learner:
                 metadata["learner"] = learner
         arrays: dict[str, Any] = {
@@ -638,6 +640,11 @@ class SMDPAgent:
                     if not math.isfinite(total):
                         raise ValueError(f"learner loop {name} {total!r} is not finite")
                     setattr(agent, name, float(total))
+                if "blended" in learner["loop"]:  # TreeConfig.model_lambda_episodes
+                    load_blends = getattr(agent, "load_blend_state", None)
+                    if load_blends is None:
+                        raise ValueError(f"a {type(agent).__name__} holds no blended epochs")
+                    load_blends(learner["loop"]["blended"])
         except (
             TypeError,
             ValueError,

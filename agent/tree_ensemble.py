@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections import deque
 from os import PathLike
 from pathlib import Path
 from typing import Any
@@ -131,6 +132,9 @@ class TreeEnsembleAgent(TreeAgent):
         whether its action was exploratory."""
         self._explored = False
         """Whether the action of the epoch under way was exploratory (``model_lambda``)."""
+        self._blended: deque[list[tuple[list[float], int, float, float]]] = deque()
+        """``TreeConfig.model_lambda_episodes``: per recent episode, oldest first, each epoch it
+        blended: first input, action, and the R and D it had before the blend."""
         self.terminal_reward_sum = 0.0
         self.target_sum = 0.0
         self.targets = 0
@@ -223,25 +227,33 @@ class TreeEnsembleAgent(TreeAgent):
         action was exploratory is cut there, G_after(e - 1) = V-bar(s_e) (Watkins's Q(lambda):
         what follows an exploratory action says nothing of the greedy policy's return). With
         ``TreeConfig.model_lambda_tried_only`` the return is cut, G_after(e) = V-bar(s'_e), where
-        epoch e ends in a leaf with an action the model has no epoch of. Each
-        stored epoch is blended with its G_after (:meth:`LeafModel.blend`), the Q-bar of every
-        blended (leaf, action) is set to its model value, and the moved leaves are swept as
-        after an epoch."""
+        epoch e ends in a leaf with an action the model has no epoch of. With
+        ``TreeConfig.model_lambda_lower_bound`` G_after(e) = max(G_after(e), V-bar(s'_e)) at
+        each step. Each stored epoch is blended with its G_after (:meth:`LeafModel.blend`);
+        with ``TreeConfig.model_lambda_episodes`` = n the blends of the episode n episodes
+        back are undone (:meth:`LeafModel.restore`). The Q-bar of every changed (leaf,
+        action) is set to its model value, and the moved leaves are swept as after an
+        epoch."""
         trace, self._trace = self._trace, []
         model = self.model
-        if not trace or model is None:
+        if model is None:
             return
         cfg = self.config
         lam = cfg.model_lambda
         watkins = cfg.model_lambda_watkins
         tried_only = cfg.model_lambda_tried_only
+        bound = cfg.model_lambda_lower_bound
+        kept = cfg.model_lambda_episodes
         actions = range(self.n_actions)
         gamma = cfg.gamma
         q = self.q
         leaf_of = self.partition.leaf_of
-        after = 0.0 if terminated else max(q[leaf_of(trace[-1][5])])
         touched: dict[tuple[int, int], None] = {}
-        for first, action, start, tau, terminal, end_x, explored in reversed(trace):
+        blended: list[tuple[list[float], int, float, float]] = []
+        after = 0.0
+        if trace:
+            after = 0.0 if terminated else max(q[leaf_of(trace[-1][5])])
+        for first, action, start, tau, terminal, end_x, explored in reversed(trace or ()):
             if terminal:
                 after = start
             else:
@@ -249,12 +261,25 @@ class TreeEnsembleAgent(TreeAgent):
                 v_end = max(q[end_leaf])
                 if tried_only and any(model.count(end_leaf, a) == 0 for a in actions):
                     after = v_end  # an untried action's optimism stays in the bootstrap
+                if bound and after < v_end:
+                    after = v_end  # a longer return says nothing against the value held
                 leaf = leaf_of(first)
-                if model.blend(leaf, action, first, lam, after):
+                prior = model.blend(leaf, action, first, lam, after)
+                if prior is not None:
                     touched[(leaf, action)] = None
+                    blended.append((first, action, *prior))
                 after = start + gamma**tau * ((1.0 - lam) * v_end + lam * after)
             if explored and watkins:  # the return before an exploratory action is cut there
                 after = max(q[leaf_of(first)])
+        if kept is not None:
+            self._blended.append(blended)
+            if len(self._blended) > kept:
+                for first, action, reward, discount in self._blended.popleft():
+                    leaf = leaf_of(first)
+                    if model.restore(leaf, action, first, reward, discount):
+                        touched[(leaf, action)] = None
+        if not trace and not touched:
+            return
         tolerance = self._in_units(cfg.sweep_tolerance)
         for leaf, action in touched:
             row = q[leaf]
@@ -267,6 +292,67 @@ class TreeEnsembleAgent(TreeAgent):
             if change > tolerance:
                 model.push(leaf, change)
         model.sweep(q, cfg.sweep_backups, tolerance, self._bonus_function())
+
+    def blend_state(self) -> list[list[list[float]]]:
+        """``TreeConfig.model_lambda_episodes``' blends as plain data, oldest episode first:
+        per episode ``[key, index, R, D]`` of each blended epoch still stored (its place in
+        the model's window, :meth:`LeafModel.locate`, and its form before the blend)."""
+        model = self.model
+        episodes: list[list[list[float]]] = []
+        if model is None:
+            return episodes
+        n = self.n_actions
+        for blends in self._blended:
+            rows: list[list[float]] = []
+            for first, action, reward, discount in blends:
+                leaf = self.partition.leaf_of(first)
+                index = model.locate(leaf, action, first)
+                if index is not None:  # an epoch no longer stored is never restored
+                    rows.append([leaf * n + action, index, reward, discount])
+            episodes.append(rows)
+        return episodes
+
+    def load_blend_state(self, episodes: Any) -> None:
+        """Inverse of :meth:`blend_state`, on this agent's restored model; a ValueError
+        names the first defect (a shape, a number, an epoch the model does not hold, more
+        episodes than ``model_lambda_episodes``)."""
+        kept = self.config.model_lambda_episodes
+        model = self.model
+        if kept is None or model is None:
+            raise ValueError("blended epochs without TreeConfig.model_lambda_episodes")
+        if not isinstance(episodes, list) or len(episodes) > kept:
+            raise ValueError(f"blended: expected a list of at most {kept} episodes")
+        restored: deque[list[tuple[list[float], int, float, float]]] = deque()
+        seen: set[tuple[int, int]] = set()
+        for e, rows in enumerate(episodes):
+            if not isinstance(rows, list):
+                raise ValueError(f"blended episode {e}: expected a list, got {rows!r}")
+            blends: list[tuple[list[float], int, float, float]] = []
+            for row in rows:
+                ok = isinstance(row, list) and len(row) == 4
+                ok = ok and all(isinstance(v, int) and not isinstance(v, bool) for v in row[:2])
+                ok = ok and all(
+                    isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
+                    for v in row[2:]
+                )
+                if not ok:
+                    raise ValueError(f"blended episode {e}: {row!r} is not [key, index, R, D]")
+                key, index, reward, discount = row
+                if (key, index) in seen:
+                    raise ValueError(f"blended episode {e}: epoch {index} of key {key} twice")
+                seen.add((key, index))
+                try:
+                    first = model.first_input(key, index)
+                except (KeyError, IndexError):
+                    raise ValueError(
+                        f"blended episode {e}: the model holds no epoch {index} of key {key}"
+                    ) from None
+                leaf, action = divmod(key, self.n_actions)
+                if self.partition.leaf_of(first) != leaf:
+                    raise ValueError(f"blended episode {e}: key {key} is not its epoch's leaf")
+                blends.append((first, action, float(reward), float(discount)))
+            restored.append(blends)
+        self._blended = restored
 
     def _crossings_hold_cap(self, crossings: float) -> int:
         """``TreeConfig.hold_crossings``: ``crossings`` times the mean leaf crossing so far,

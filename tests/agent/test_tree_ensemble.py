@@ -12,6 +12,7 @@ import pytest
 from gymnasium import spaces
 
 from agent import TreeAgent, TreeConfig, preset
+from agent.exploration import make_exploration
 from agent.leaf_model import LeafModel
 from agent.tree_ensemble import (
     ShiftedPartitionTree,
@@ -558,3 +559,183 @@ def test_model_lambda_cuts_must_be_bools() -> None:
 def test_step_counts_are_positive_ints_or_none(name: str, value: object) -> None:
     with pytest.raises(ValueError, match=rf"TreeConfig\.{name} must be a positive int or None"):
         TreeConfig(**{name: value})
+
+
+def test_a_restored_model_epoch_takes_its_one_step_form_back() -> None:
+    model = LeafModel(n_actions=2, window=4)
+    first = [0.1]
+    model.add(0, 1, first, -2.0, 0.5, [0.6], 3)
+    q = [[0.0, 0.0] for _ in range(4)]
+    q[3] = [-8.0, -6.0]
+    assert model.locate(0, 1, first) == 0
+    assert model.locate(0, 1, [0.1]) is None  # an equal list is another epoch
+    assert model.first_input(1, 0) is first
+    assert model.blend(0, 1, first, 0.25, -10.0) == (-2.0, 0.5)
+    assert model.value(0, 1, q) == -3.25 + 0.375 * -6.0
+    assert model.restore(0, 1, first, -2.0, 0.5)
+    assert model.value(0, 1, q) == -2.0 + 0.5 * -6.0
+    assert not model.restore(1, 1, first, -2.0, 0.5)  # not stored there
+    with pytest.raises(IndexError):
+        model.first_input(1, 1)
+
+
+def _left_records(agent: Any) -> list[tuple[float, float]]:
+    """(R, D) of each stored epoch of the left leaf's action 1, oldest first."""
+    assert agent.model is not None
+    left = agent.partition.leaf_of([0.1])
+    state = dict((key, records) for key, records in agent.model.state()["records"])
+    return [(r, d) for _, r, d, _, _ in state[left * 2 + 1]]
+
+
+def test_model_lambda_episodes_undo_each_blend_after_that_many_later_episodes() -> None:
+    # Greedy action 1 on the walk every episode, whatever the values: the three agents see
+    # the same epochs. Kept for one later episode, episode 0's blend is undone at the end of
+    # episode 1 (its one-step form back, as the agent without lambda stores it), while
+    # episode 1's own blend is the one the agent that keeps every blend makes.
+    recent, left, _ = _lambda_one_agent(model_lambda_episodes=1)
+    always, _, _ = _lambda_one_agent()
+    plain_cfg = plain_config(planning="sweep", sweep_backups=8, gamma=0.5)
+    plain = tree_agent_class(plain_cfg)(
+        Walk().observation_space, Walk().action_space, "greedy", 0, plain_cfg
+    )
+    for row in plain.q:
+        row[:] = [-1e6, 0.0]
+    recent.learn(Walk(), 1, reset_seed=0)
+    always.learn(Walk(), 1, reset_seed=0)
+    plain.learn(Walk(), 2, reset_seed=0)
+    assert _left_records(recent) == _left_records(always) != _left_records(plain)[:1]
+    recent.learn(Walk(), 1, reset_seed=1)
+    always.learn(Walk(), 1, reset_seed=1)
+    one_step, blended = _left_records(recent)
+    assert one_step == _left_records(plain)[0]
+    assert blended == _left_records(always)[1]
+    assert _left_records(always)[0] != one_step
+    assert recent.q[left][1] == recent.model.value(left, 1, recent.q)  # type: ignore[union-attr]
+
+
+def test_model_lambda_lower_bound_never_takes_the_return_below_the_value_where_it_ended() -> None:
+    # lambda 1, gamma 0.5: the return after the first epoch is the second epoch's, -1.9375
+    # from its first input; the right leaf's value at the episode's end is the mean over
+    # that epoch's inputs, -1.6125, above it: the bound takes that value instead.
+    agent, left, right = _lambda_one_agent(model_lambda_lower_bound=True)
+    agent.learn(Walk(), 1, reset_seed=0)
+    gamma = 0.5
+    tail = [-sum(gamma**j for j in range(5 - k)) for k in range(5)]
+    v_end = sum(tail) / 5
+    assert agent.q[right][1] == pytest.approx(v_end, abs=1e-12)
+    assert -sum(gamma**j for j in range(5)) < v_end
+    returns = [-sum(gamma**j for j in range(5 - k)) + gamma ** (5 - k) * v_end for k in range(5)]
+    assert agent.q[left][1] == pytest.approx(sum(returns) / 5, abs=1e-12)
+    unbounded, _, _ = _lambda_one_agent()
+    unbounded.learn(Walk(), 1, reset_seed=0)
+    assert unbounded.q[left][1] < agent.q[left][1]
+
+
+class NoisyWalk(Walk):
+    """Walk whose steps are longer by a uniform draw of up to 0.05 (the reset seed's): the
+    right leaf's value moves from episode to episode, so an undone blend changes values."""
+
+    def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict]:
+        self.x += float(self.np_random.uniform(0.0, 0.05))
+        return super().step(action)
+
+
+def _recent_agent() -> TreeEnsembleAgent:
+    config = plain_config(
+        planning="sweep",
+        sweep_backups=8,
+        gamma=0.9,
+        model_lambda=0.8,
+        model_lambda_episodes=2,
+        model_lambda_lower_bound=True,
+    )
+    explore = make_exploration("epsilon-greedy", epsilon=0.3)  # the end leaf's value varies
+    agent = tree_agent_class(config)(
+        Walk().observation_space, Walk().action_space, explore, 5, config
+    )
+    assert isinstance(agent, TreeEnsembleAgent)
+    return agent
+
+
+def test_recent_blends_save_load_and_continue_bit_for_bit(tmp_path: Any) -> None:
+    agent = _recent_agent()
+    agent.learn(NoisyWalk(), 4, reset_seed=0)
+    path = agent.save(tmp_path / "recent.npz")
+    loaded = TreeAgent.load(path)
+    assert isinstance(loaded, TreeEnsembleAgent)
+    assert loaded.blend_state() == agent.blend_state()
+    assert len(agent.blend_state()) == 2
+    assert all(agent.blend_state())
+    ahead = [(s.steps, s.episode_return) for s in agent.learn(NoisyWalk(), 4, reset_seed=9)]
+    assert [
+        (s.steps, s.episode_return) for s in loaded.learn(NoisyWalk(), 4, reset_seed=9)
+    ] == ahead
+    assert loaded.q == agent.q
+    # without its blends the file's agent would not undo them: the state is needed
+    forgetful = TreeAgent.load(_edit_loop(path, tmp_path / "forgot.npz", "blended", []))
+    forgetful.learn(NoisyWalk(), 4, reset_seed=9)
+    assert forgetful.q != agent.q
+
+
+@pytest.mark.parametrize(
+    ("value", "defect"),
+    [
+        ("x", "expected a list of at most 2 episodes"),
+        ([[], [], []], "expected a list of at most 2 episodes"),
+        ([5], "blended episode 0: expected a list"),
+        ([[[0, 0, 1.0]]], r"\[0, 0, 1\.0\] is not \[key, index, R, D\]"),
+        ([[[True, 0, 1.0, 0.5]]], "is not"),
+        ([[[0, 0, "1", 0.5]]], "is not"),
+        ([[[0, 0.5, 1.0, 0.5]]], "is not"),
+        ([[[999, 0, 1.0, 0.5]]], "holds no epoch 0 of key 999"),
+        ([[[1, 10_000, 1.0, 0.5]]], "holds no epoch 10000 of key 1"),
+        ("twice", r"epoch \d+ of key \d+ twice"),
+        ([[[0, 0, float("nan"), 0.5]]], r"not valid JSON|is not \[key"),
+    ],
+)
+def test_damaged_blends_in_a_file_are_refused_by_name(
+    tmp_path: Any, value: object, defect: str
+) -> None:
+    agent = _recent_agent()
+    agent.learn(NoisyWalk(), 4, reset_seed=0)
+    row = agent.blend_state()[0][0]  # a stored epoch's [key, index, R, D]
+    if value == "twice":
+        value = [[row, row]]
+    bad = _edit_loop(agent.save(tmp_path / "good.npz"), tmp_path / "bad.npz", "blended", value)
+    with pytest.raises(ValueError, match=defect) as error:
+        TreeAgent.load(bad)
+    assert str(bad) in str(error.value)
+
+
+def test_a_blend_list_in_a_file_without_recent_blends_is_refused(tmp_path: Any) -> None:
+    agent, _, _ = _lambda_one_agent()
+    agent.learn(Walk(), 1, reset_seed=0)
+    bad = _edit_loop(agent.save(tmp_path / "good.npz"), tmp_path / "bad.npz", "blended", [])
+    with pytest.raises(ValueError, match=r"blended epochs without TreeConfig\.model_lambda_ep"):
+        TreeAgent.load(bad)
+
+
+@pytest.mark.parametrize(
+    ("changes", "defect"),
+    [
+        ({"model_lambda_episodes": 4}, r"model_lambda_episodes = 4 needs model_lambda > 0"),
+        ({"model_lambda_lower_bound": True}, r"model_lambda_lower_bound = True needs model_"),
+        (
+            {"model_lambda": 0.5, "planning": "sweep", "model_lambda_episodes": 0},
+            r"model_lambda_episodes must be a positive int or None, got 0",
+        ),
+        (
+            {"model_lambda": 0.5, "planning": "sweep", "model_lambda_episodes": True},
+            r"got True",
+        ),
+        (
+            {"model_lambda": 0.5, "planning": "sweep", "model_lambda_episodes": 2.0},
+            r"got 2\.0",
+        ),
+    ],
+)
+def test_recent_lambda_options_are_checked(changes: dict[str, Any], defect: str) -> None:
+    with pytest.raises(ValueError, match=defect):
+        TreeConfig(**changes)
+    with pytest.raises(TypeError, match="model_lambda_lower_bound must be a bool, got 1"):
+        TreeConfig(model_lambda=0.5, planning="sweep", model_lambda_lower_bound=1)  # type: ignore[arg-type]
