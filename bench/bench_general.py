@@ -1,9 +1,10 @@
-"""Cost of the general preset's lambda blend (issue 9, part 7).
+"""Cost of the lambda blend in the general agent (issue 9, parts 6 and 7; the options are off).
 
 ``TreeConfig.model_lambda`` adds a backward pass over each episode's epochs, a blend of each
 stored epoch, the undoing of the blends of ``model_lambda_episodes`` episodes back, and a
 sweep, at every episode's end. This prints CPU seconds per 1,000 environment steps of the
-general preset with the blend and of the same preset without it (``model_lambda`` 0), on
+general preset with the blend (lambda 0.9, undone after 8 episodes, bounded below: the
+``recent8-bound`` of ``experiments/lambda_recent_dev.toml``) and of the preset itself, on
 MountainCar-v0 and on the ``paper`` maze, in interleaved rounds (CPU time of this process, the
 agent built before the clock starts), and their ratio (median over rounds, with its range).
 The two agents learn differently, so they take different steps: the ratio is per step.
@@ -35,12 +36,12 @@ TASKS: dict[str, dict[str, Any]] = {
 
 def cpu_per_kilostep(task: str, blend: bool, episodes: int, seed: int) -> float:
     """CPU seconds per 1,000 steps of ``episodes`` learning episodes of the general preset
-    (``blend=False``: with ``model_lambda`` and its options off)."""
+    (``blend=True``: with the recent, bounded lambda blend)."""
     general = preset("general")
     config = general.config
-    if not blend:
+    if blend:
         config = dataclasses.replace(
-            config, model_lambda=0.0, model_lambda_episodes=None, model_lambda_lower_bound=False
+            config, model_lambda=0.9, model_lambda_episodes=8, model_lambda_lower_bound=True
         )
     env = gym.make(task, **TASKS[task])
     agent = tree_agent_class(config)(

@@ -1,7 +1,7 @@
 """Print the development maze table of issue 9, part 7, from a results folder of
 ``lambda_recent_dev``: per layout and strategy, the mean steps per episode over the run (AUC),
 the mean of the last 100 episodes (final), the episodes that reached the goal, and the leaves at
-the end (a run at the 4,096-leaf cap is marked)::
+the end (a run at its leaf cap, ``max_leaves`` in the run's file, is marked)::
 
     python docs/results/issue9_recent_dev/compare_mazes.py results/lambda_recent_dev
 """
@@ -9,6 +9,7 @@ the end (a run at the 4,096-leaf cap is marked)::
 from __future__ import annotations
 
 import csv
+import json
 import sys
 from pathlib import Path
 
@@ -29,7 +30,9 @@ def main(folder: Path) -> None:
             steps = [int(e["steps"]) for e in episodes]
             goals = sum(int(e["success"]) for e in episodes)
             leaves = int(episodes[-1]["leaves"])
-            cap = " (cap)" if leaves >= 4096 else ""
+            meta = json.loads(path.with_suffix(".json").read_text())
+            limit = meta["inputs"]["config"]["agent_config"]["max_leaves"]
+            cap = " (cap)" if leaves >= limit else ""
             auc = sum(steps) / len(steps)
             final = sum(steps[-100:]) / len(steps[-100:])
             cell = f"{auc:.0f} / {final:.0f} / {goals} / {leaves}{cap}"
