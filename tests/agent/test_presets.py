@@ -35,9 +35,11 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     beyond = {"threshold_units", "scale_rule", "planning", "model_window", "sweep_backups"}
     table_one = {"split_min_samples", "split_max_abs_mean", "split_min_variance"}
     others = {"initial_depth", "presplit_each_dimension", "model_bonus", "sweep_tolerance"}
+    others |= {"max_leaves"}  # a guard of memory; 16,384 in the general preset
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
+    assert general.max_leaves == 16384  # issue 9, part 7 (docs/paper-notes.md, "The leaf cap")
 
 
 @pytest.mark.parametrize("name", sorted(PRESETS))

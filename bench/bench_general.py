@@ -1,0 +1,80 @@
+"""Cost of the lambda blend in the general agent (issue 9, parts 6 and 7; the options are off).
+
+``TreeConfig.model_lambda`` adds a backward pass over each episode's epochs, a blend of each
+stored epoch, the undoing of the blends of ``model_lambda_episodes`` episodes back, and a
+sweep, at every episode's end. This prints CPU seconds per 1,000 environment steps of the
+general preset with the blend (lambda 0.9, undone after 8 episodes, bounded below: the
+``recent8-bound`` of ``experiments/lambda_recent_dev.toml``) and of the preset itself, on
+MountainCar-v0 and on the ``paper`` maze, in interleaved rounds (CPU time of this process, the
+agent built before the clock starts), and their ratio (median over rounds, with its range).
+The two agents learn differently, so they take different steps: the ratio is per step.
+
+    python bench/bench_general.py                 # 3 rounds, about 3 minutes
+    python bench/bench_general.py --rounds 1 --episodes 50
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import gc
+import statistics
+import time
+from typing import Any
+
+import gymnasium as gym
+
+import bullet_maze  # noqa: F401 (registers BulletMaze-v0)
+from agent import preset
+from agent.tree_ensemble import tree_agent_class
+
+TASKS: dict[str, dict[str, Any]] = {
+    "MountainCar-v0": {},
+    "BulletMaze-v0": {"maze": "paper", "max_episode_steps": 5000},
+}
+
+
+def cpu_per_kilostep(task: str, blend: bool, episodes: int, seed: int) -> float:
+    """CPU seconds per 1,000 steps of ``episodes`` learning episodes of the general preset
+    (``blend=True``: with the recent, bounded lambda blend)."""
+    general = preset("general")
+    config = general.config
+    if blend:
+        config = dataclasses.replace(
+            config, model_lambda=0.9, model_lambda_episodes=8, model_lambda_lower_bound=True
+        )
+    env = gym.make(task, **TASKS[task])
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, general.make_exploration(), seed, config
+    )
+    gc.collect()
+    start = time.process_time()
+    history = agent.learn(env, episodes, reset_seed=seed)
+    cpu = time.process_time() - start
+    env.close()
+    return 1000.0 * cpu / sum(h.steps for h in history)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--episodes", type=int, default=100)
+    args = parser.parse_args()
+    print(f"general preset, {args.episodes} episodes a run, {args.rounds} interleaved rounds")
+    print("task | CPU-s / 1,000 steps without | with the blend | ratio (median, range)")
+    for task in TASKS:
+        ratios, plain, blended = [], [], []
+        for r in range(args.rounds):
+            without = cpu_per_kilostep(task, False, args.episodes, seed=r)
+            with_blend = cpu_per_kilostep(task, True, args.episodes, seed=r)
+            plain.append(without)
+            blended.append(with_blend)
+            ratios.append(with_blend / without)
+        print(
+            f"{task} | {statistics.median(plain):.3f} | {statistics.median(blended):.3f} | "
+            f"{statistics.median(ratios):.2f}x ({min(ratios):.2f}-{max(ratios):.2f})"
+        )
+
+
+if __name__ == "__main__":
+    main()
