@@ -381,7 +381,9 @@ class TreeEnsembleAgent(TreeAgent):
         decide = cfg.decision_steps if redecide and cfg.decision_steps is not None else cap
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
-        hold_exploration = cfg.hold_exploration
+        hold_exploration = cfg.hold_exploration and (
+            cfg.hold_terminals is None or self.terminals_seen < cfg.hold_terminals
+        )
 
         x = [float(v) for v in obs]
         leaves = self._leaves(x)

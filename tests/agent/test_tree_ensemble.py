@@ -215,6 +215,42 @@ def test_decisions_from_the_first_terminal_on(tmp_path: Any) -> None:
     assert loaded.terminals_seen == 2  # type: ignore[attr-defined]
 
 
+def test_held_exploration_stops_after_hold_terminals_terminals(tmp_path: Any) -> None:
+    # Every choice random (epsilon 1). One terminal allowed: episode 0 holds its random actions
+    # (one epoch per leaf crossed, learnt as a held run: the whole episode is one choice), and
+    # from episode 1 on each random action lasts one epoch, ending at the leaf change at 0.5.
+    env = Walk()
+    config = plain_config(hold_exploration=True, hold_terminals=1)
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, "epsilon-greedy", 0, config
+    )
+    assert type(agent) is TreeEnsembleAgent
+    agent.exploration._epsilon = 1.0  # type: ignore[attr-defined]
+    first, second, third = agent.learn(env, 3, reset_seed=0)
+    assert first.epochs == 1  # held to the goal, across the split at 0.5
+    assert (second.epochs, third.epochs) == (2, 2)  # not held: a new choice at the split
+    assert agent.terminals_seen == 3
+    # the same agent without the option holds every episode's random action
+    always = dataclasses.replace(config, hold_terminals=None)
+    holder = TreeAgent(env.observation_space, env.action_space, "epsilon-greedy", 0, always)
+    holder.exploration._epsilon = 1.0  # type: ignore[attr-defined]
+    assert [s.epochs for s in holder.learn(env, 3, reset_seed=0)] == [1, 1, 1]
+    # the count of terminals travels with a saved agent, so a loaded one does not hold again
+    loaded = TreeAgent.load(agent.save(tmp_path / "agent.npz"))
+    assert loaded.terminals_seen == 3  # type: ignore[attr-defined]
+    loaded.exploration._epsilon = 1.0  # type: ignore[attr-defined]
+    assert loaded.learn(env, 1, reset_seed=5)[0].epochs == 2
+
+
+def test_hold_terminals_is_off_by_default_and_checked() -> None:
+    assert TreeConfig().hold_terminals is None
+    assert type(tree_agent_class(TreeConfig())) is not TreeEnsembleAgent
+    with pytest.raises(ValueError, match=r"hold_terminals = 1 needs agent\.tree_ensemble"):
+        TreeAgent(
+            Walk.observation_space, Walk.action_space, "greedy", 0, plain_config(hold_terminals=1)
+        )
+
+
 def test_hold_crossings_cap_a_held_run_at_a_multiple_of_the_mean_leaf_crossing(
     tmp_path: Any,
 ) -> None:
@@ -554,7 +590,9 @@ def test_model_lambda_cuts_must_be_bools() -> None:
             TreeConfig(model_lambda=0.5, planning="sweep", **{name: 1})
 
 
-@pytest.mark.parametrize("name", ["max_epoch_steps", "hold_steps", "decision_steps"])
+@pytest.mark.parametrize(
+    "name", ["max_epoch_steps", "hold_steps", "decision_steps", "hold_terminals"]
+)
 @pytest.mark.parametrize("value", [True, 0, -3, 2.5, "5"])
 def test_step_counts_are_positive_ints_or_none(name: str, value: object) -> None:
     with pytest.raises(ValueError, match=rf"TreeConfig\.{name} must be a positive int or None"):
