@@ -8,6 +8,7 @@ import pytest
 from gymnasium import spaces
 
 from agent import PRESETS, TreeConfig, preset
+from agent.tree_ensemble import TreeEnsembleAgent
 from experiments import EXPERIMENT_DIR
 
 BOX = spaces.Box(0.0, 1.0, shape=(2,))
@@ -36,10 +37,13 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     table_one = {"split_min_samples", "split_max_abs_mean", "split_min_variance"}
     others = {"initial_depth", "presplit_each_dimension", "model_bonus", "sweep_tolerance"}
     others |= {"max_leaves"}  # a guard of memory; 16,384 in the general preset
+    others |= {"hold_terminals"}  # issue 9, part 8
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
     assert general.max_leaves == 16384  # issue 9, part 7 (docs/paper-notes.md, "The leaf cap")
+    assert general.hold_terminals == 20  # issue 9, part 8 ("Held exploration until n terminals")
+    assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
 @pytest.mark.parametrize("name", sorted(PRESETS))
