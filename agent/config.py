@@ -212,6 +212,12 @@ class TreeConfig:
     (docs/paper-notes.md, "Held exploration until the first terminal"). An exploratory action
     after that lasts one epoch, as a greedy one does. Runs on
     :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
+    hold_after_truncation: bool = False
+    """With ``hold_terminals``: an episode that follows one cut by the time limit (truncated,
+    not terminal) holds its exploratory actions again, whatever the count of terminals
+    (beyond the paper). A greedy policy that loops between two leaves repeats its loop in every
+    episode, and a one-epoch random action rarely breaks it; a held run does. Needs
+    ``hold_terminals``. Runs on :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
     ensemble_trees: int = 1
     """Several trees whose Q-bar values are averaged, as tile coding averages offset tilings
     (beyond the paper; :class:`agent.tree_ensemble.TreeEnsembleAgent`): tree k's presplit
@@ -286,12 +292,18 @@ class TreeConfig:
         for name in (
             "decision_from_terminal",
             "decision_on_failure",
+            "hold_after_truncation",
             "model_lambda_watkins",
             "model_lambda_tried_only",
             "model_lambda_lower_bound",
         ):
             if not isinstance(getattr(self, name), bool):
                 raise TypeError(f"TreeConfig.{name} must be a bool, got {getattr(self, name)!r}")
+        if self.hold_after_truncation and self.hold_terminals is None:
+            raise ValueError(
+                "TreeConfig.hold_after_truncation = True needs hold_terminals (it brings back "
+                "the holds hold_terminals ends)"
+            )
         if self.decision_on_failure and self.decision_steps is None:
             raise ValueError(
                 "TreeConfig.decision_on_failure = True needs decision_steps (it gates them)"
@@ -386,6 +398,7 @@ LOOP_OPTIONS: dict[str, Any] = {
     "hold_steps": None,
     "hold_crossings": None,
     "hold_terminals": None,
+    "hold_after_truncation": False,
     "model_lambda": 0.0,
 }
 """Each ``TreeConfig`` option that only the tree ensemble's loop runs, with its off value."""

@@ -537,6 +537,7 @@ class SMDPAgent:
                     "terminal_reward_sum": getattr(self, "terminal_reward_sum", 0.0),
                     "target_sum": getattr(self, "target_sum", 0.0),
                     "targets": getattr(self, "targets", 0),
+                    "last_truncated": getattr(self, "last_truncated", False),
                 }
                 if self.config.model_lambda_episodes is not None and hasattr(self, "blend_state"):
                     learner["loop"]["blended"] = self.blend_state()
@@ -640,6 +641,10 @@ class SMDPAgent:
                     if not math.isfinite(total):
                         raise ValueError(f"learner loop {name} {total!r} is not finite")
                     setattr(agent, name, float(total))
+                cut = learner["loop"].get("last_truncated", False)  # older files: False
+                if not isinstance(cut, bool):
+                    raise ValueError(f"learner loop last_truncated {cut!r} is not a bool")
+                setattr(agent, "last_truncated", cut)  # noqa: B010
                 if "blended" in learner["loop"]:  # TreeConfig.model_lambda_episodes
                     load_blends = getattr(agent, "load_blend_state", None)
                     if load_blends is None:

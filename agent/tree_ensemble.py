@@ -122,6 +122,8 @@ class TreeEnsembleAgent(TreeAgent):
         """Tree 0 (this agent) and the shifted trees."""
         self.terminals_seen = 0
         """Terminal transitions seen (``TreeConfig.decision_from_terminal``)."""
+        self.last_truncated = False
+        """Whether the last episode was cut by the time limit (``hold_after_truncation``)."""
         self.crossing_steps = 0
         self.crossings = 0
         """Steps and count of the leaf crossings so far (``TreeConfig.hold_crossings``)."""
@@ -382,7 +384,9 @@ class TreeEnsembleAgent(TreeAgent):
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
         hold_exploration = cfg.hold_exploration and (
-            cfg.hold_terminals is None or self.terminals_seen < cfg.hold_terminals
+            cfg.hold_terminals is None
+            or self.terminals_seen < cfg.hold_terminals
+            or (cfg.hold_after_truncation and self.last_truncated)
         )
 
         x = [float(v) for v in obs]
@@ -468,6 +472,7 @@ class TreeEnsembleAgent(TreeAgent):
                 rs = []
         if terminated:
             self.terminals_seen += 1
+        self.last_truncated = bool(truncated) and not terminated
         if self._trace is not None:
             self._blend_episode(terminated)
         success = bool(info["is_success"]) if "is_success" in info else bool(terminated)

@@ -116,7 +116,8 @@ def test_actions_follow_the_mean_of_the_trees_rows() -> None:
 
 def test_one_tree_is_the_plain_tree_bit_for_bit() -> None:
     env = gym.make("CartPole-v1")
-    config = preset("general").config
+    # the general preset without its loop option (hold_terminals): TreeAgent's loop can run it
+    config = dataclasses.replace(preset("general").config, hold_terminals=None)
     plain = TreeAgent(env.observation_space, env.action_space, "adaptive+tabu", 3, config)
     one = TreeEnsembleAgent(env.observation_space, env.action_space, "adaptive+tabu", 3, config)
     a = plain.learn(env, 25, reset_seed=3)
@@ -242,9 +243,40 @@ def test_held_exploration_stops_after_hold_terminals_terminals(tmp_path: Any) ->
     assert loaded.learn(env, 1, reset_seed=5)[0].epochs == 2
 
 
+def test_an_episode_after_a_truncated_one_holds_again(tmp_path: Any) -> None:
+    # Every choice random, the walk cut at 12 steps: action 1 reaches the goal in 10 steps,
+    # action 0 (0.05 a step) crosses the split at 0.5 after 10 and is cut at 12. A held episode
+    # is one choice (1 epoch); an unheld one chooses again at the split (2 epochs). With one
+    # terminal allowed, an episode holds until the first goal, and after any cut episode.
+    env = gym.wrappers.TimeLimit(Walk(), max_episode_steps=12)
+    config = plain_config(hold_exploration=True, hold_terminals=1, hold_after_truncation=True)
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, "epsilon-greedy", 0, config
+    )
+    agent.exploration._epsilon = 1.0  # type: ignore[attr-defined]
+    episodes = agent.learn(env, 30, reset_seed=0)
+    goals = 0
+    cut_before = False
+    kinds = set()
+    for episode in episodes:
+        held = goals < 1 or cut_before
+        assert episode.epochs == (1 if held else 2)
+        kinds.add((held, goals > 0))
+        goals += not episode.truncated
+        cut_before = episode.truncated
+    assert kinds == {(True, False), (True, True), (False, True)}  # every case met
+    assert agent.last_truncated is episodes[-1].truncated
+    loaded = TreeAgent.load(agent.save(tmp_path / "agent.npz"))
+    assert loaded.last_truncated is agent.last_truncated  # type: ignore[attr-defined]
+
+
 def test_hold_terminals_is_off_by_default_and_checked() -> None:
     assert TreeConfig().hold_terminals is None
     assert type(tree_agent_class(TreeConfig())) is not TreeEnsembleAgent
+    with pytest.raises(ValueError, match="hold_after_truncation = True needs hold_terminals"):
+        TreeConfig(hold_after_truncation=True)
+    with pytest.raises(TypeError, match="hold_after_truncation must be a bool, got 1"):
+        TreeConfig(hold_terminals=3, hold_after_truncation=1)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match=r"hold_terminals = 1 needs agent\.tree_ensemble"):
         TreeAgent(
             Walk.observation_space, Walk.action_space, "greedy", 0, plain_config(hold_terminals=1)
@@ -381,6 +413,9 @@ def _edit_loop(source: Any, target: Any, name: str, value: object) -> Any:
         ("terminal_reward_sum", 1e400, r"not valid JSON|is not finite"),
         ("targets", -1, r"learner loop targets -1 is not an int >= 0"),
         ("targets", 2.5, r"learner loop targets 2\.5 is not an int >= 0"),
+        ("last_truncated", 1, r"learner loop last_truncated 1 is not a bool"),
+        ("last_truncated", "false", r"learner loop last_truncated 'false' is not a bool"),
+        ("last_truncated", None, r"learner loop last_truncated None is not a bool"),
     ],
 )
 def test_a_damaged_failure_measure_in_a_file_is_refused_by_name(
