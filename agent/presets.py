@@ -19,7 +19,7 @@ can build it by name::
   (docs/paper-notes.md, "Beyond the paper: a learner that is fast everywhere"), and a leaf cap
   of 16,384 instead of 4,096 (issue 9, part 7: a tree at the cap cannot split the leaf whose
   aliasing breaks a learnt path; docs/paper-notes.md, "The leaf cap"), and exploratory
-  actions held only until 20 terminal transitions have been seen (issue 9, part 8: after
+  actions held only until 100 terminal transitions have been seen (issue 9, part 8: after
   that a held run is a long detour from a greedy path that is already good;
   docs/paper-notes.md, "Held exploration until n terminals"). It runs on
   :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop, which that option needs.
@@ -88,7 +88,7 @@ PAPER_LITERAL = Preset(
 GENERAL = Preset(
     "general",
     "one set of defaults for every task: measured units, a model over the leaves, sweeping, "
-    "held exploration until 20 terminals",
+    "held exploration until 100 terminals",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -99,7 +99,7 @@ GENERAL = Preset(
         sweep_backups=64,
         presplit_each_dimension=True,
         max_leaves=16384,
-        hold_terminals=20,
+        hold_terminals=100,
     ),
     "adaptive+tabu",
 )

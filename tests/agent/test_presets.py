@@ -42,7 +42,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
     assert general.max_leaves == 16384  # issue 9, part 7 (docs/paper-notes.md, "The leaf cap")
-    assert general.hold_terminals == 20  # issue 9, part 8 ("Held exploration until n terminals")
+    assert general.hold_terminals == 100  # issue 9, part 8 ("Held exploration until n terminals")
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
