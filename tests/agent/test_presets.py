@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import tomllib
 
 import pytest
@@ -65,3 +66,15 @@ def test_general_paper_experiment_spells_out_the_general_preset() -> None:
     general = preset("general")
     assert spec["exploration"] == general.exploration
     assert TreeConfig(**{**data["agent"], **spec["config"]}) == general.config
+
+
+@pytest.mark.parametrize("kind", ["classic", "mazes", "paper"])
+def test_part8_comparisons_set_the_preset_against_part_7s(kind: str) -> None:
+    data = tomllib.loads((EXPERIMENT_DIR / f"hold_terminals_{kind}.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"]["preset"] == "general"
+    old = by_name["general-part7"]
+    assert old["exploration"] == preset("general").exploration
+    # part 7's preset: today's without held exploration's end (hold_terminals, part 8)
+    part7 = dataclasses.replace(preset("general").config, hold_terminals=None)
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == part7
