@@ -132,6 +132,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "hold_crossings": (float, int, type(None)),
     "decision_from_terminal": bool,
     "decision_on_failure": bool,
+    "hold_terminals": (int, type(None)),
+    "hold_after_truncation": bool,
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""
