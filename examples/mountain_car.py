@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import gymnasium as gym
 
 from agent import PRESETS, EpisodeStats, Exploration, TreeAgent, TreeConfig
+from agent.tree_ensemble import tree_agent_class
 
 logger = logging.getLogger(__name__)
 
@@ -75,12 +76,14 @@ def train(
         base_config, base_exploration = PRESETS[preset].config, PRESETS[preset].make_exploration()
     else:
         raise ValueError(f"unknown preset {preset!r}: {sorted(PRESETS)} or 'hand-scaled'")
-    agent = TreeAgent(
+    chosen = config if config is not None else base_config
+    # the general preset's loop options need TreeEnsembleAgent; tree_agent_class picks the class
+    agent = tree_agent_class(chosen)(
         env.observation_space,
         env.action_space,
         exploration if exploration is not None else base_exploration,
         seed,
-        config if config is not None else base_config,
+        chosen,
     )
     history = agent.learn(env, episodes, reset_seed=seed)
     results = evaluate(agent, env, eval_episodes, seed=10_000 + seed)

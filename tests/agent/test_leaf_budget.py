@@ -17,6 +17,7 @@ import bullet_maze  # noqa: F401 (registers the env)
 from agent import TreeAgent, TreeConfig, preset
 from agent.fast_loop import ineligible_reason
 from agent.partition_tree import GatedPartitionTree, PartitionTree
+from agent.tree_ensemble import tree_agent_class
 
 FINE = TreeConfig(split_min_samples=20, split_min_variance=0.0, max_epoch_steps=10)
 
@@ -87,7 +88,7 @@ def test_the_fast_loop_leaves_a_gated_tree_to_the_reference() -> None:
 
 def test_the_general_preset_with_a_budget_builds() -> None:
     config = dataclasses.replace(preset("general").config, leaves_per_terminal=16)
-    agent = TreeAgent(*_spaces(), "adaptive+tabu", 0, config)
+    agent = tree_agent_class(config)(*_spaces(), "adaptive+tabu", 0, config)
     assert isinstance(agent.partition, GatedPartitionTree)
 
 
