@@ -25,7 +25,7 @@ from typing import Any
 import gymnasium as gym
 
 import bullet_maze  # noqa: F401 (registers BulletMaze-v0)
-from agent import preset
+from agent import TreeConfig, preset
 from agent.tree_ensemble import tree_agent_class
 
 TASKS: dict[str, dict[str, Any]] = {
@@ -34,25 +34,31 @@ TASKS: dict[str, dict[str, Any]] = {
 }
 
 
-def cpu_per_kilostep(task: str, blend: bool, episodes: int, seed: int) -> float:
-    """CPU seconds per 1,000 steps of ``episodes`` learning episodes of the general preset
-    (``blend=True``: with the recent, bounded lambda blend)."""
-    general = preset("general")
-    config = general.config
-    if blend:
-        config = dataclasses.replace(
-            config, model_lambda=0.9, model_lambda_episodes=8, model_lambda_lower_bound=True
-        )
+def learning_cost(task: str, config: TreeConfig, episodes: int, seed: int) -> tuple[float, int]:
+    """CPU seconds and environment steps of ``episodes`` learning episodes of an agent with
+    ``config`` and the general preset's strategy (built before the clock starts)."""
     env = gym.make(task, **TASKS[task])
     agent = tree_agent_class(config)(
-        env.observation_space, env.action_space, general.make_exploration(), seed, config
+        env.observation_space, env.action_space, preset("general").make_exploration(), seed, config
     )
     gc.collect()
     start = time.process_time()
     history = agent.learn(env, episodes, reset_seed=seed)
     cpu = time.process_time() - start
     env.close()
-    return 1000.0 * cpu / sum(h.steps for h in history)
+    return cpu, sum(h.steps for h in history)
+
+
+def cpu_per_kilostep(task: str, blend: bool, episodes: int, seed: int) -> float:
+    """CPU seconds per 1,000 steps of ``episodes`` learning episodes of the general preset
+    (``blend=True``: with the recent, bounded lambda blend)."""
+    config = preset("general").config
+    if blend:
+        config = dataclasses.replace(
+            config, model_lambda=0.9, model_lambda_episodes=8, model_lambda_lower_bound=True
+        )
+    cpu, steps = learning_cost(task, config, episodes, seed)
+    return 1000.0 * cpu / steps
 
 
 def main() -> None:

@@ -18,40 +18,20 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import gc
 import statistics
-import time
-from typing import Any
 
-import gymnasium as gym
+from bench_general import TASKS, learning_cost  # the same tasks and timing (bench/)
 
-import bullet_maze  # noqa: F401 (registers BulletMaze-v0)
 from agent import preset
-from agent.tree_ensemble import tree_agent_class
-
-TASKS: dict[str, dict[str, Any]] = {
-    "MountainCar-v0": {},
-    "BulletMaze-v0": {"maze": "paper", "max_episode_steps": 5000},
-}
 
 
 def cost(task: str, part7: bool, episodes: int, seed: int) -> tuple[float, float]:
     """CPU seconds per 1,000 steps and per episode of ``episodes`` learning episodes of the
     general preset (``part7=True``: without ``hold_terminals``)."""
-    general = preset("general")
-    config = general.config
+    config = preset("general").config
     if part7:
         config = dataclasses.replace(config, hold_terminals=None)
-    env = gym.make(task, **TASKS[task])
-    agent = tree_agent_class(config)(
-        env.observation_space, env.action_space, general.make_exploration(), seed, config
-    )
-    gc.collect()
-    start = time.process_time()
-    history = agent.learn(env, episodes, reset_seed=seed)
-    cpu = time.process_time() - start
-    env.close()
-    steps = sum(h.steps for h in history)
+    cpu, steps = learning_cost(task, config, episodes, seed)
     return 1000.0 * cpu / steps, cpu / episodes
 
 
