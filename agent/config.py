@@ -209,7 +209,7 @@ class TreeConfig:
     model carries its value back, every held run is a long detour from a greedy path that is
     already good: on the dev layout ``paper_narrow`` the greedy policy was within 1.1x of the
     optimum from episode 50 while the training episodes stayed at 1.4x through episode 600
-    (docs/paper-notes.md, "Held exploration until the first terminal"). An exploratory action
+    (docs/paper-notes.md, "Held exploration until n terminals"). An exploratory action
     after that lasts one epoch, as a greedy one does. Runs on
     :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
     hold_after_truncation: bool = False

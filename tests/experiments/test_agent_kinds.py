@@ -270,3 +270,36 @@ def test_the_shipped_comparisons_hold_every_agent_of_issue_9(names: tuple[str, .
             factory.check_agents(config, env, task.env)
         finally:
             env.close()
+
+
+@pytest.mark.parametrize(
+    ("changes", "defect"),
+    [
+        ({"hold_terminals": 0}, "hold_terminals must be a positive int or None, got 0"),
+        ({"hold_terminals": -3}, "hold_terminals must be a positive int or None, got -3"),
+        ({"hold_terminals": True}, "hold_terminals: expected an integer"),
+        ({"hold_terminals": "5"}, "hold_terminals: expected an integer"),
+        ({"hold_terminals": 2.5}, "hold_terminals: expected an integer"),
+        ({"hold_after_truncation": 1}, "hold_after_truncation: expected true or false"),
+        (
+            {"hold_terminals": None, "hold_after_truncation": True},
+            "hold_after_truncation = True needs hold_terminals",
+        ),
+    ],
+)
+def test_bad_hold_options_on_the_general_preset_name_the_file_and_field(
+    changes: dict[str, Any], defect: str
+) -> None:
+    """Part 8's options in a strategy table: every bad value is refused by name."""
+    config = {k: v for k, v in changes.items() if v is not None}
+    if "hold_terminals" in changes and changes["hold_terminals"] is None:
+        spelt = {**preset("general").config.to_dict(), **config}
+        spelt.pop("hold_terminals")
+        strategy = {"name": "held", "exploration": "adaptive+tabu", "config": spelt}
+    else:
+        strategy = {"name": "held", "preset": "general", "config": config}
+    with pytest.raises(ConfigError) as error:
+        _parse(strategy)
+    message = str(error.value)
+    assert message.startswith("kinds.toml: [strategy.1]"), message
+    assert defect in message, message
