@@ -19,9 +19,12 @@ import hashlib
 import io
 import json
 import os
+import signal
 import tempfile
+import threading
 import warnings
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any, Literal
@@ -130,6 +133,31 @@ def run_name(strategy: str, seed: int, task: str | None = None) -> str:
     """``<strategy>__<seed>``, the CleanRL habit of naming a run by what and which seed; a
     task's runs are in its folder, ``<task>/<strategy>__<seed>``."""
     return f"{strategy}__{seed}" if task is None else f"{task}/{strategy}__{seed}"
+
+
+@contextmanager
+def deferred_interrupt() -> Iterator[None]:
+    """Hold a Ctrl-C (SIGINT) until the block ends, then deliver it.
+
+    A run's files are written one after the other; an interrupt between the CSV and its
+    sidecar would leave a CSV that nothing vouches for (recomputed on resume, but a finished
+    run lost). Outside the main thread, where Python delivers no signals, it does nothing."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    received: list[tuple[int, Any]] = []
+    previous = signal.signal(signal.SIGINT, lambda number, frame: received.append((number, frame)))
+    restore = signal.SIG_DFL if previous is None else previous  # None: set outside Python
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, restore)
+    if not received:
+        return
+    if callable(restore):
+        restore(*received[0])
+    elif restore == signal.SIG_DFL:
+        os.kill(os.getpid(), signal.SIGINT)
 
 
 def atomic_write_text(path: Path, text: str) -> None:
@@ -257,12 +285,13 @@ def write_run(run_dir: Path, result: RunResult, inputs: Mapping[str, Any] | None
         inputs=dict(inputs if inputs is not None else result.inputs),
     )
     meta["sidecar_sha256"] = fingerprint.digest(meta)  # of everything else in it
-    if evaluation is not None:
-        atomic_write_text(eval_path(run_dir, result.name), evaluation)
-    if result.agent_file:
-        atomic_write_bytes(agent_path(run_dir, result.name), result.agent_file)
-    atomic_write_text(csv_path, text)
-    atomic_write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True) + "\n")
+    with deferred_interrupt():  # all of the run's files, or a Ctrl-C after them
+        if evaluation is not None:
+            atomic_write_text(eval_path(run_dir, result.name), evaluation)
+        if result.agent_file:
+            atomic_write_bytes(agent_path(run_dir, result.name), result.agent_file)
+        atomic_write_text(csv_path, text)
+        atomic_write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True) + "\n")
     return csv_path
 
 

@@ -516,8 +516,9 @@ def write_cell(out: Path, result: CellResult, inputs: Mapping[str, Any]) -> None
         "inputs": dict(inputs),
     }
     meta["sidecar_sha256"] = fingerprint.digest(meta)
-    store.atomic_write_text(csv_path, text)
-    store.atomic_write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True) + "\n")
+    with store.deferred_interrupt():  # both files, or a Ctrl-C after them
+        store.atomic_write_text(csv_path, text)
+        store.atomic_write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True) + "\n")
 
 
 def check_cell(out: Path, cell: Cell, expected: Mapping[str, Any]) -> CellCheck:

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import os
+import signal
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from experiments import store
 
@@ -44,3 +47,29 @@ def test_stale_temporaries_are_removed(tmp_path: Path):
     (tmp_path / ".eps__1.csv.abc.tmp").write_text("half")
     assert store.remove_stale_temporaries(tmp_path) == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def test_ctrl_c_between_a_runs_csv_and_its_sidecar_waits_for_the_sidecar(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+):
+    # The CI failure this guards: a Ctrl-C landed after a run's CSV and before its sidecar,
+    # leaving a finished run that nothing vouched for.
+    write_text = store.atomic_write_text
+
+    def write_then_interrupt(path: Path, text: str) -> None:
+        write_text(path, text)
+        if path.suffix == ".csv":
+            os.kill(os.getpid(), signal.SIGINT)  # delivered here if nothing holds it
+
+    monkeypatch.setattr(store, "atomic_write_text", write_then_interrupt)
+    result = store.RunResult("eps", 0, 7, ((1, 40, 4.61, True, False, 1, 2),))
+    with pytest.raises(KeyboardInterrupt):
+        store.write_run(tmp_path, result)
+    assert store.check_run(tmp_path, "eps__7", episodes=1, cap=5000).status == "valid"
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_no_interrupt_leaves_the_handler_as_it_was(tmp_path: Path):
+    store.write_run(tmp_path, store.RunResult("eps", 0, 8, ((1, 40, 4.61, True, False, 1, 2),)))
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    assert store.check_run(tmp_path, "eps__8", episodes=1, cap=5000).status == "valid"
