@@ -163,6 +163,24 @@ class TreeConfig:
     state is then a sample of a worse policy (an exploratory detour, a failed run), not
     evidence against the value; a return shorter than it still pulls the leaf's value up at
     once. False: the return as it happened."""
+    model_split_epochs: int | None = None
+    """Model-driven splits (beyond the paper; :mod:`agent.model_split`): once the model of
+    ``planning = "sweep"`` stores at least this many epochs of one (leaf, action), the leaf is
+    split where those epochs' first inputs best separate their eq. (8) targets under the
+    current values, if the two sides differ by ``model_split_gap`` and ``model_split_t``
+    standard errors. A leaf that the greedy path avoids is seldom tested by section IV.B's
+    test, which needs N_th new pairs, so a leaf where one action sometimes hits a wall and
+    sometimes passes (a door, a pillar's edge) keeps one averaged value and is avoided for
+    good; its stored epochs say so after a few visits. Tested after each epoch of (leaf,
+    action) in which the paper's test did not split. None: off. Needs the model; at least 4
+    (two epochs a side) and at most ``model_window``."""
+    model_split_gap: float = 0.2
+    """With ``model_split_epochs``: least difference between the mean targets of the two sides
+    of a model split, in threshold units (``threshold_units``; on a maze 0.2 is a fifth of a
+    collision, twenty steps)."""
+    model_split_t: float = 3.0
+    """With ``model_split_epochs``: least difference between the mean targets of the two sides
+    of a model split, in pooled standard errors of that difference."""
     decision_steps: int | None = None
     """An epoch of an action that is not a held exploratory run ends after this many steps
     (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
@@ -304,6 +322,7 @@ class TreeConfig:
                 "TreeConfig.hold_after_truncation = True needs hold_terminals (it brings back "
                 "the holds hold_terminals ends)"
             )
+        self._check_model_split()
         if self.decision_on_failure and self.decision_steps is None:
             raise ValueError(
                 "TreeConfig.decision_on_failure = True needs decision_steps (it gates them)"
@@ -367,6 +386,35 @@ class TreeConfig:
                 raise ValueError(f"TreeConfig.{name} must be a number >= 0, got {value!r}")
             if not math.isfinite(value):
                 raise ValueError(f"TreeConfig.{name} must be finite, got {value!r}")
+
+    def _check_model_split(self) -> None:
+        epochs = self.model_split_epochs
+        for name in ("model_split_gap", "model_split_t"):
+            value = getattr(self, name)
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, int | float)
+                or not math.isfinite(value)
+                or value < 0.0
+            ):
+                raise ValueError(f"TreeConfig.{name} must be a finite number >= 0, got {value!r}")
+        if epochs is None:
+            return
+        if isinstance(epochs, bool) or not isinstance(epochs, int) or epochs < 4:
+            raise ValueError(
+                f"TreeConfig.model_split_epochs must be an int >= 4 (two epochs on each side) "
+                f"or None, got {epochs!r}"
+            )
+        if self.planning != "sweep":
+            raise ValueError(
+                f"TreeConfig.model_split_epochs = {epochs!r} needs planning = 'sweep' (it tests "
+                f"the model's stored epochs), got planning = {self.planning!r}"
+            )
+        if isinstance(self.model_window, int) and epochs > self.model_window:
+            raise ValueError(
+                f"TreeConfig.model_split_epochs = {epochs!r} is more than model_window = "
+                f"{self.model_window!r}, the most epochs the model stores for one (leaf, action)"
+            )
 
     def loop_options(self) -> dict[str, Any]:
         """The options set here that only the tree ensemble's loop runs

@@ -125,6 +125,10 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_lambda_tried_only": bool,
     "model_lambda_episodes": (int, type(None)),
     "model_lambda_lower_bound": bool,
+    # matter only with the model, which turns the loop off
+    "model_split_epochs": (int, type(None)),
+    "model_split_gap": (float, int),
+    "model_split_t": (float, int),
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
     "decision_steps": (int, type(None)),
@@ -228,6 +232,9 @@ def _agent_functions() -> dict[str, Any]:
         "PartitionTree.leaf_of": PartitionTree.leaf_of,
         "PartitionTree.record": PartitionTree.record,
         "PartitionTree._try_split": PartitionTree._try_split,
+        "PartitionTree.may_split": PartitionTree.may_split,
+        "PartitionTree.split_box": PartitionTree.split_box,
+        "PartitionTree.split_with_samples": PartitionTree.split_with_samples,
         "PartitionTree.split": PartitionTree.split,
         "UniformGrid.leaf_of": UniformGrid.leaf_of,
         "ErrorBuffer.__init__": ErrorBuffer.__init__,
@@ -291,12 +298,15 @@ def _env_functions(base: Any) -> dict[str, Any]:
 
 FINGERPRINTS = {
     "SMDPAgent._run_episode": "0c3f07fce917b80a",
-    "SMDPAgent._end_epoch": "9d8ecf2f01acf49e",
+    "SMDPAgent._end_epoch": "d13ef1d98aa52de1",
     "SMDPAgent._end_held_run": "d869d34667c3067f",
     "SMDPAgent._grow": "df200e3fc423ac39",
     "PartitionTree.leaf_of": "ee41c6188076754e",
     "PartitionTree.record": "c6ca80ffc6949cf0",
-    "PartitionTree._try_split": "9016b187d3175103",
+    "PartitionTree._try_split": "47296a89935ec01a",
+    "PartitionTree.may_split": "6e07498ec05bb032",
+    "PartitionTree.split_box": "2afccda95c78f738",
+    "PartitionTree.split_with_samples": "a42416998727ec06",
     "PartitionTree.split": "d41c976a347495ae",
     "UniformGrid.leaf_of": "d0472db7cca8f40e",
     "ErrorBuffer.__init__": "9ea1b2a8897928d2",

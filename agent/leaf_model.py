@@ -95,6 +95,21 @@ class LeafModel:
             total += discount * max(q[end_leaf])
         return total / len(records)
 
+    def targets(
+        self, leaf: int, action: int, q: list[list[float]]
+    ) -> tuple[list[list[float]], list[float]]:
+        """The first input and the eq. (8) target ``R + D V-bar(l')`` under the values ``q`` of
+        every stored epoch of (leaf, action), oldest first (``TreeConfig.model_split_epochs``)."""
+        records = self._records.get(leaf * self.n_actions + action)
+        if not records:
+            return [], []
+        firsts = [record[0] for record in records]
+        values = [
+            reward if end is None else reward + discount * max(q[end_leaf])
+            for _, reward, discount, end, end_leaf in records
+        ]
+        return firsts, values
+
     def locate(self, leaf: int, action: int, first: list[float]) -> int | None:
         """The place in the window of (leaf, action) of the stored epoch that began at
         ``first`` (the very list it was stored with; an equal list is another epoch), or None

@@ -23,7 +23,9 @@ from agent.episode_stats import EpisodeStats
 from agent.exploration import Exploration, make_exploration
 from agent.inspection import LeafInfo, render_partition
 from agent.leaf_model import LeafModel
+from agent.model_split import choose_model_split
 from agent.partition import Partition
+from agent.partition_tree import PartitionTree
 from agent.random_stream import UniformStream
 from agent.scale import ReturnScale, ReturnSpread, RewardScale
 from agent.smdp import epoch_discounts, epoch_returns, leaf_update
@@ -325,10 +327,39 @@ class SMDPAgent:
         if not self.partition.records_errors:
             return False
         children = self.partition.record(leaf, xs, errors)
+        if children is None and end_x is not None:
+            children = self._model_split(leaf, action)
         if children is None:
             return False
         self._grow(leaf, children)
         return True
+
+    def _model_split(self, leaf: int, action: int) -> tuple[int, int] | None:
+        """``TreeConfig.model_split_epochs``: split ``leaf`` where the stored epochs of
+        ``action`` there disagree (:func:`agent.model_split.choose_model_split`); returns the
+        children, or None (off, too few epochs, no room, or no admissible cut)."""
+        cfg = self.config
+        model = self.model
+        partition = self.partition
+        least = cfg.model_split_epochs
+        if least is None or model is None or not isinstance(partition, PartitionTree):
+            return None
+        if model.count(leaf, action) < least or not partition.may_split():
+            return None
+        firsts, targets = model.targets(leaf, action, self.q)
+        low, high, _, min_width = partition.split_box(leaf)
+        choice = choose_model_split(
+            np.asarray(firsts, dtype=np.float64),
+            np.asarray(targets, dtype=np.float64),
+            low,
+            high,
+            min_width,
+            min_gap=self._in_units(cfg.model_split_gap),
+            min_t=cfg.model_split_t,
+        )
+        if choice is None:
+            return None
+        return partition.split_with_samples(leaf, *choice)
 
     def _in_units(self, value: float) -> float:
         """A constant of ``TreeConfig`` in reward units (``threshold_units``)."""

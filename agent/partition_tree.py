@@ -181,14 +181,38 @@ class PartitionTree:
             buf.clear()
         return children
 
-    def _try_split(self, leaf: int, buf: ErrorBuffer) -> tuple[int, int] | None:
-        if self.n_leaves >= self.config.max_leaves:
-            return None
+    def may_split(self) -> bool:
+        """Whether the tree may grow a leaf now (``max_leaves``)."""
+        return self.n_leaves < self.config.max_leaves
+
+    def split_box(self, leaf: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """A leaf's box and the root's width (unbounded dimensions cut to the data), and the
+        narrowest child allowed in each dimension (``min_leaf_fraction`` of the root's width)."""
         low, high = np.asarray(self._low[leaf]), np.asarray(self._high[leaf])
         root_width = self._root_width
         if self._grown:
             low, high, root_width = self._grown_box(low, high)
-        min_width = root_width * self.config.min_leaf_fraction
+        return low, high, root_width, root_width * self.config.min_leaf_fraction
+
+    def split_with_samples(self, leaf: int, dim: int, value: float) -> tuple[int, int]:
+        """:meth:`split`, handing the leaf's state-error pairs to the child that holds each
+        (``children_inherit_samples``; else they are dropped)."""
+        buf = self._buffers.get(leaf)
+        children = self.split(leaf, dim, value)
+        if self.config.children_inherit_samples and buf is not None and buf.count:
+            inputs, errors = buf.arrays()
+            goes_left = inputs[:, dim] < value
+            for child, mask in zip(children, (goes_left, ~goes_left), strict=True):
+                if mask.any():
+                    child_buf = ErrorBuffer(self.dims, self.config.split_min_samples)
+                    child_buf.add(inputs[mask].tolist(), errors[mask].tolist())
+                    self._buffers[child] = child_buf
+        return children
+
+    def _try_split(self, leaf: int, buf: ErrorBuffer) -> tuple[int, int] | None:
+        if not self.may_split():
+            return None
+        low, high, root_width, min_width = self.split_box(leaf)
         if not ((high - low) >= 2.0 * min_width).any():
             return None  # checked before copying the buffer: in "window" mode this runs each epoch
         inputs, errors = buf.arrays()
@@ -209,15 +233,7 @@ class PartitionTree:
         if choice is None:
             return None
         dim, value = choice
-        children = self.split(leaf, dim, value)
-        if self.config.children_inherit_samples:
-            goes_left = inputs[:, dim] < value
-            for child, mask in zip(children, (goes_left, ~goes_left), strict=True):
-                if mask.any():
-                    child_buf = ErrorBuffer(self.dims, self.config.split_min_samples)
-                    child_buf.add(inputs[mask].tolist(), errors[mask].tolist())
-                    self._buffers[child] = child_buf
-        return children
+        return self.split_with_samples(leaf, dim, value)
 
     def _grown_box(
         self, low: np.ndarray, high: np.ndarray
@@ -373,7 +389,6 @@ class GatedPartitionTree(PartitionTree):
         grown = self.initial_leaves + self.config.leaves_per_terminal * self.terminals
         return min(grown, self.config.max_leaves)
 
-    def _try_split(self, leaf: int, buf: ErrorBuffer) -> tuple[int, int] | None:
-        if self.n_leaves >= self.leaf_budget:
-            return None
-        return super()._try_split(leaf, buf)
+    def may_split(self) -> bool:
+        """Whether the tree may grow a leaf now (the budget, :attr:`leaf_budget`)."""
+        return self.n_leaves < self.leaf_budget
