@@ -174,10 +174,11 @@ class TreeConfig:
     good; its stored epochs say so after a few visits. Tested after each epoch of (leaf,
     action) in which the paper's test did not split. None: off. Needs the model; at least 4
     (two epochs a side) and at most ``model_window``."""
-    model_split_gap: float = 0.2
+    model_split_gap: float = 0.1
     """With ``model_split_epochs``: least difference between the mean targets of the two sides
-    of a model split, in threshold units (``threshold_units``; on a maze 0.2 is a fifth of a
-    collision, twenty steps)."""
+    of a model split, in threshold units (``threshold_units``; with the measured unit 0.1 is a
+    tenth of a maze's collision or ten steps' reward, and 10 on classic control's -1 or +1 a
+    step). Chosen on development cases (docs/paper-notes.md, "Model-driven splits")."""
     model_split_t: float = 3.0
     """With ``model_split_epochs``: least difference between the mean targets of the two sides
     of a model split, in pooled standard errors of that difference."""

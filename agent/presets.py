@@ -88,7 +88,7 @@ PAPER_LITERAL = Preset(
 GENERAL = Preset(
     "general",
     "one set of defaults for every task: measured units, a model over the leaves, sweeping, "
-    "held exploration until 100 terminals",
+    "held exploration until 100 terminals, model-driven splits",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -100,6 +100,7 @@ GENERAL = Preset(
         presplit_each_dimension=True,
         max_leaves=16384,
         hold_terminals=100,
+        model_split_epochs=8,
     ),
     "adaptive+tabu",
 )
