@@ -303,3 +303,31 @@ def test_bad_hold_options_on_the_general_preset_name_the_file_and_field(
     message = str(error.value)
     assert message.startswith("kinds.toml: [strategy.1]"), message
     assert defect in message, message
+
+
+@pytest.mark.parametrize(
+    ("config", "defect"),
+    [
+        ({"model_split_epochs": 3}, "model_split_epochs must be an int >= 4"),
+        ({"model_split_epochs": 40}, "model_split_epochs = 40 is more than model_window = 32"),
+        ({"model_split_epochs": True}, "model_split_epochs: expected an integer"),
+        ({"model_split_epochs": "8"}, "model_split_epochs: expected an integer"),
+        ({"model_split_gap": -1.0}, "model_split_gap must be a finite number >= 0, got -1.0"),
+        ({"model_split_gap": "x"}, "model_split_gap: expected a number, got 'x'"),
+        ({"model_split_t": float("nan")}, "model_split_t: must be finite, got nan"),
+        ({"model_split_t": True}, "model_split_t: expected a number, got true"),
+        (
+            {"model_split_epochs": 8, "planning": "none"},
+            "model_split_epochs = 8 needs planning = 'sweep'",
+        ),
+    ],
+)
+def test_bad_model_split_options_name_the_file_and_field(
+    config: dict[str, Any], defect: str
+) -> None:
+    """Part 9's options in a strategy table: every bad value is refused by name."""
+    with pytest.raises(ConfigError) as error:
+        _parse({"name": "split", "preset": "general", "config": config})
+    message = str(error.value)
+    assert message.startswith("kinds.toml: [strategy.1]"), message
+    assert defect in message, message
