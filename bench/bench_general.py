@@ -49,6 +49,30 @@ def learning_cost(task: str, config: TreeConfig, episodes: int, seed: int) -> tu
     return cpu, sum(h.steps for h in history)
 
 
+def compare(label: str, old: TreeConfig, new: TreeConfig, rounds: int, episodes: int) -> None:
+    """Print, per task, the CPU seconds per 1,000 steps and per learning episode of ``new``
+    and of ``old`` (called ``label``) over ``episodes`` episodes, in interleaved rounds (agent
+    and reset seed = the round), and the ratios new / old (median over rounds, with their
+    range). The two agents learn differently, so they take different steps."""
+    for task in TASKS:
+        rows: dict[bool, list[tuple[float, float]]] = {False: [], True: []}
+        for seed in range(rounds):
+            for is_old, config in ((True, old), (False, new)):
+                cpu, steps = learning_cost(task, config, episodes, seed)
+                rows[is_old].append((1000.0 * cpu / steps, cpu / episodes))
+        step_ratio = [a[0] / b[0] for a, b in zip(rows[False], rows[True], strict=True)]
+        episode_ratio = [a[1] / b[1] for a, b in zip(rows[False], rows[True], strict=True)]
+        print(
+            f"{task}: CPU-s / 1,000 steps {statistics.median(r[0] for r in rows[False]):.3f}"
+            f" ({label}: {statistics.median(r[0] for r in rows[True]):.3f}), ratio"
+            f" {statistics.median(step_ratio):.2f}x ({min(step_ratio):.2f}-{max(step_ratio):.2f});"
+            f" CPU-s / episode {statistics.median(r[1] for r in rows[False]):.4f}"
+            f" ({label}: {statistics.median(r[1] for r in rows[True]):.4f}), ratio"
+            f" {statistics.median(episode_ratio):.2f}x"
+            f" ({min(episode_ratio):.2f}-{max(episode_ratio):.2f})"
+        )
+
+
 def cpu_per_kilostep(task: str, blend: bool, episodes: int, seed: int) -> float:
     """CPU seconds per 1,000 steps of ``episodes`` learning episodes of the general preset
     (``blend=True``: with the recent, bounded lambda blend)."""

@@ -1,0 +1,38 @@
+"""Cost of model-driven splits in the general agent (issue 9, part 9).
+
+``TreeConfig.model_split_epochs`` tests, after each epoch that did not split, the stored epochs
+of the epoch's (leaf, action): their targets under the current values and the best cut along
+every input dimension (``agent/model_split.py``), in Python. It also changes the tree the agent
+grows, and so the cost of everything else. This prints, for the general preset and for part 8's
+(the same without ``model_split_epochs``), the CPU seconds per 1,000 environment steps and per
+learning episode over ``--episodes`` episodes, on MountainCar-v0 and on the ``paper`` maze, in
+interleaved rounds, and the ratios preset / part 8 (median over rounds, with their range).
+
+    python bench/bench_model_split.py                 # 3 rounds, about a minute
+    python bench/bench_model_split.py --rounds 1 --episodes 100
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+
+from bench_general import compare  # the same tasks and timing (bench/)
+
+from agent import preset
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--episodes", type=int, default=300)
+    args = parser.parse_args()
+    if args.rounds < 1 or args.episodes < 1:
+        parser.error("--rounds and --episodes must be at least 1")
+    general = preset("general").config
+    part8 = dataclasses.replace(general, model_split_epochs=None)
+    compare("part 8", part8, general, args.rounds, args.episodes)
+
+
+if __name__ == "__main__":
+    main()
