@@ -182,6 +182,11 @@ class TreeConfig:
     model_split_t: float = 3.0
     """With ``model_split_epochs``: least difference between the mean targets of the two sides
     of a model split, in pooled standard errors of that difference."""
+    model_split_drops_pairs: bool = False
+    """With ``model_split_epochs``: a model split drops the leaf's state-error pairs (section
+    IV.B's buffer) instead of handing them to the children as ``children_inherit_samples``
+    does for the paper's splits. The prototype did this; measured in docs/paper-notes.md,
+    "Model-driven splits"."""
     decision_steps: int | None = None
     """An epoch of an action that is not a held exploratory run ends after this many steps
     (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
@@ -399,6 +404,11 @@ class TreeConfig:
                 or value < 0.0
             ):
                 raise ValueError(f"TreeConfig.{name} must be a finite number >= 0, got {value!r}")
+        if not isinstance(self.model_split_drops_pairs, bool):
+            raise TypeError(
+                "TreeConfig.model_split_drops_pairs must be a bool, "
+                f"got {self.model_split_drops_pairs!r}"
+            )
         if epochs is None:
             return
         if isinstance(epochs, bool) or not isinstance(epochs, int) or epochs < 4:

@@ -359,6 +359,8 @@ class SMDPAgent:
         )
         if choice is None:
             return None
+        if cfg.model_split_drops_pairs:
+            return partition.split(leaf, *choice)
         return partition.split_with_samples(leaf, *choice)
 
     def _in_units(self, value: float) -> float:

@@ -155,6 +155,8 @@ def test_the_agent_file_keeps_the_option(tmp_path: Path) -> None:
         ("model_split_gap", "0.2"),
         ("model_split_t", -1.0),
         ("model_split_t", True),
+        ("model_split_drops_pairs", 1),
+        ("model_split_drops_pairs", "yes"),
     ],
 )
 def test_bad_values_are_refused_by_name(field: str, bad: Any) -> None:
@@ -181,3 +183,18 @@ def test_the_tree_ensemble_runs_it_too() -> None:
     agent.learn(env, 60, reset_seed=3)
     assert agent.n_leaves >= 2
     assert agent.predict(np.array([0.1])) == 0
+
+
+def test_a_model_split_hands_the_pairs_to_the_children_or_drops_them() -> None:
+    # the pairs never decide anything here (the paper's test needs 10,000), so both agents
+    # act the same and differ only in what the root's children hold
+    kept = _train(LEDGE, 30)
+    dropped = _train(dataclasses.replace(LEDGE, model_split_drops_pairs=True), 30)
+    assert kept.q == dropped.q
+    assert kept.partition._threshold == dropped.partition._threshold
+
+    def held(agent: TreeAgent) -> int:
+        return sum(buffer.count for buffer in agent.partition._buffers.values())
+
+    assert held(kept) == 30  # one pair an episode, every one kept (the test never runs)
+    assert held(dropped) < 30
