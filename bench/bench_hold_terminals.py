@@ -17,24 +17,17 @@ two agents learn differently, so they take different steps.
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 
-from bench_general import compare  # the same tasks and timing (bench/)
+from bench_general import compare_main  # the same tasks and timing (bench/)
 
 from agent import preset
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--rounds", type=int, default=3)
-    parser.add_argument("--episodes", type=int, default=300)
-    args = parser.parse_args()
-    if args.rounds < 1 or args.episodes < 1:
-        parser.error("--rounds and --episodes must be at least 1")
     part8 = dataclasses.replace(preset("general").config, model_split_epochs=None)
     part7 = dataclasses.replace(part8, hold_terminals=None)
-    compare("part 7", part7, part8, args.rounds, args.episodes)
+    compare_main(__doc__.split("\n\n")[0], "part 7", part7, part8)
 
 
 if __name__ == "__main__":

@@ -14,24 +14,17 @@ interleaved rounds, and the ratios preset / part 8 (median over rounds, with the
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 
-from bench_general import compare  # the same tasks and timing (bench/)
+from bench_general import compare_main  # the same tasks and timing (bench/)
 
 from agent import preset
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--rounds", type=int, default=3)
-    parser.add_argument("--episodes", type=int, default=300)
-    args = parser.parse_args()
-    if args.rounds < 1 or args.episodes < 1:
-        parser.error("--rounds and --episodes must be at least 1")
     general = preset("general").config
     part8 = dataclasses.replace(general, model_split_epochs=None)
-    compare("part 8", part8, general, args.rounds, args.episodes)
+    compare_main(__doc__.split("\n\n")[0], "part 8", part8, general)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
-"""Run the maze dev driver over layouts x seeds x arms, two jobs at a time (``W`` workers)::
+"""Run dev jobs (``job.py``) over cases x seeds x arms, ``W`` at a time (default 2)::
 
-    python batch.py OUT LAYOUT_FILE SEEDS 'label=PROTOTYPE_JSON|OVERRIDES_JSON' ...
+    python batch.py maze OUT LAYOUT_FILE SEEDS 'label=PROTOTYPE_JSON|OVERRIDES_JSON' ...
+    python batch.py classic OUT TASK,TASK SEEDS 'label=PROTOTYPE_JSON|OVERRIDES_JSON' ...
 
 An empty PROTOTYPE_JSON runs the committed code with the TreeConfig overrides.
 """
@@ -18,25 +19,28 @@ ROOT = HERE.parents[2]
 
 
 def main(argv: list[str]) -> None:
-    out, layout_file, seeds = argv[0], argv[1], [int(s) for s in argv[2].split(",")]
+    kind, out, cases, seeds = argv[0], argv[1], argv[2], [int(s) for s in argv[3].split(",")]
+    if kind == "maze":
+        names = [line.strip() for line in Path(cases).read_text().splitlines() if line.strip()]
+    else:
+        names = cases.split(",")
     arms = []
-    for arm in argv[3:]:
+    for arm in argv[4:]:
         label, rest = arm.split("=", 1)
         prototype, overrides = rest.split("|")
         arms.append((label, prototype, overrides or "{}"))
-    layouts = [line.strip() for line in Path(layout_file).read_text().splitlines() if line.strip()]
-    jobs = [(maze, seed, arm) for seed in seeds for maze in layouts for arm in arms]
+    jobs = [(name, seed, arm) for seed in seeds for name in names for arm in arms]
 
     def go(job: tuple[str, int, tuple[str, str, str]]) -> None:
-        maze, seed, (label, prototype, overrides) = job
-        command = [sys.executable, str(HERE / "maze.py"), maze, str(seed), label, overrides, out]
+        name, seed, (label, prototype, overrides) = job
+        command = [sys.executable, str(HERE / "job.py"), kind, name, str(seed), label]
         subprocess.run(
-            command,
+            [*command, overrides, out],
             env=dict(os.environ, MS=prototype),
             cwd=ROOT,
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
-            timeout=1800,
+            timeout=3600,
             check=False,
         )
 
