@@ -130,6 +130,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_split_gap": (float, int),
     "model_split_t": (float, int),
     "model_split_drops_pairs": bool,
+    "model_split_from_terminal": bool,
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
     "decision_steps": (int, type(None)),

@@ -346,6 +346,8 @@ class SMDPAgent:
             return None
         if model.count(leaf, action) < least or not partition.may_split():
             return None
+        if cfg.model_split_from_terminal and model.terminals == 0:
+            return None
         firsts, targets = model.targets(leaf, action, self.q)
         low, high, _, min_width = partition.split_box(leaf)
         choice = choose_model_split(

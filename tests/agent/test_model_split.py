@@ -94,6 +94,14 @@ class Ledge(gym.Env[np.ndarray, int]):
         return np.array([self.x]), reward, True, False, {}
 
 
+class CutLedge(Ledge):
+    """The ledge, but each episode is cut by a time limit (truncated): never a terminal."""
+
+    def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        obs, reward, _, _, info = super().step(action)
+        return obs, reward, False, True, info
+
+
 LEDGE = TreeConfig(
     split_min_samples=10_000,  # the paper's test never runs: only the model can split
     planning="sweep",
@@ -103,8 +111,8 @@ LEDGE = TreeConfig(
 )
 
 
-def _train(config: TreeConfig, episodes: int = 60) -> TreeAgent:
-    env = Ledge()
+def _train(config: TreeConfig, episodes: int = 60, env: Ledge | None = None) -> TreeAgent:
+    env = env if env is not None else Ledge()
     agent = TreeAgent(env.observation_space, env.action_space, "epsilon-greedy", 3, config)
     agent.learn(env, episodes, reset_seed=3)
     return agent
@@ -157,6 +165,7 @@ def test_the_agent_file_keeps_the_option(tmp_path: Path) -> None:
         ("model_split_t", True),
         ("model_split_drops_pairs", 1),
         ("model_split_drops_pairs", "yes"),
+        ("model_split_from_terminal", 1),
     ],
 )
 def test_bad_values_are_refused_by_name(field: str, bad: Any) -> None:
@@ -198,3 +207,21 @@ def test_a_model_split_hands_the_pairs_to_the_children_or_drops_them() -> None:
 
     assert held(kept) == 30  # one pair an episode, every one kept (the test never runs)
     assert held(dropped) < 30
+
+
+def test_from_the_first_terminal_waits_for_one() -> None:
+    waiting = dataclasses.replace(LEDGE, model_split_from_terminal=True)
+    # no terminal ever: the model's epochs disagree as much, but no model split is made
+    assert _train(LEDGE, env=CutLedge()).n_leaves >= 2
+    never = _train(waiting, env=CutLedge())
+    assert never.model is not None
+    assert never.model.terminals == 0
+    assert never.n_leaves == 1
+    # every episode ends in a terminal: the same agent as without the option
+    assert _train(waiting).q == _train(LEDGE).q
+
+
+@pytest.mark.parametrize("field", ["model_split_from_terminal", "model_split_drops_pairs"])
+def test_the_model_split_switches_need_model_splits(field: str) -> None:
+    with pytest.raises(ValueError, match=f"{field} = True needs model_split_epochs"):
+        dataclasses.replace(LEDGE, model_split_epochs=None, **{field: True})

@@ -1,6 +1,7 @@
-"""A probe for the next step, not an option: ``job.py`` with model splits held until the
-model has recorded its first terminal epoch (the goal on a maze, MountainCar and Acrobot; the
-first fall on CartPole)::
+"""The probe for the next step as it was run, before the option existed: ``job.py`` with model
+splits held until the model has recorded its first terminal epoch (the goal on a maze,
+MountainCar and Acrobot; the first fall on CartPole). ``TreeConfig.model_split_from_terminal``
+is the option it became (the same runs)::
 
     python gate_probe.py classic MountainCar-v0 2 gate '{"model_split_epochs": 8}' out.jsonl
 
