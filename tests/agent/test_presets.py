@@ -96,3 +96,13 @@ def test_part9_comparisons_set_the_preset_against_part_8s(kind: str) -> None:
     assert old["exploration"] == preset("general").exploration
     part8 = dataclasses.replace(preset("general").config, model_split_epochs=None)
     assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == part8
+
+
+@pytest.mark.parametrize("kind", ["classic", "mazes"])
+def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) -> None:
+    data = tomllib.loads((EXPERIMENT_DIR / f"model_split_from_terminal_{kind}.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    candidate = by_name["general-from-terminal"]
+    assert candidate["preset"] == "general"
+    assert candidate["config"] == {"model_split_from_terminal": True}
