@@ -38,6 +38,7 @@ from dataclasses import dataclass, fields
 from functools import cache
 from os import PathLike
 from pathlib import Path
+from tokenize import TokenError
 from typing import Any, Literal, Union, get_args, get_origin, get_type_hints
 
 import numpy as np
@@ -527,7 +528,7 @@ def _read_header(
                 shape, fortran, dtype = np.lib.format.read_array_header_2_0(handle)
             else:
                 raise ValueError(f"unsupported .npy version {version}")
-        except (ValueError, SyntaxError, EOFError) as error:
+        except (ValueError, SyntaxError, EOFError, TokenError) as error:  # a damaged header
             raise fail(f"entry {name!r} is not a NumPy array ({error})") from None
         header = handle.tell()
     if fortran:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import zipfile
 from collections.abc import Callable
 from pathlib import Path
 
@@ -303,6 +304,28 @@ def test_an_unknown_compressed_entry_is_not_read(tmp_path: Path) -> None:
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
     assert peak < 4 << 20
+
+
+@pytest.mark.parametrize(
+    ("old", "new"), [(b"'shape': (", b"'shape': (("), (b"'shape': (", b"'shape': {")]
+)
+def test_an_unbalanced_array_header_is_refused_by_name(
+    tmp_path: Path, make_corridor: Callable[..., gym.Env], old: bytes, new: bytes
+) -> None:
+    """A header whose brackets do not close (numpy's parser raises a tokenizer error, not a
+    ValueError, for the first) is a damaged entry, not a traceback."""
+    agent = build("tree", make_corridor(), "adaptive+tabu")
+    saved = agent.save(tmp_path / "a.npz")
+    damaged = tmp_path / "damaged.npz"
+    with zipfile.ZipFile(saved) as source, zipfile.ZipFile(damaged, "w") as target:
+        for info in source.infolist():
+            data = source.read(info.filename)
+            if info.filename == "q.npy":
+                assert old in data
+                data = data.replace(old, new, 1)
+            target.writestr(info, data)
+    with pytest.raises(ValueError, match=r"damaged\.npz.*entry 'q' is not a NumPy array"):
+        TreeAgent.load(damaged)
 
 
 def test_random_byte_flips_are_refused_or_harmless(
