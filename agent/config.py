@@ -194,6 +194,19 @@ class TreeConfig:
     IV.B's buffer) instead of handing them to the children as ``children_inherit_samples``
     does for the paper's splits. The prototype did this; measured in docs/paper-notes.md,
     "Model-driven splits"."""
+    novelty_cells: int | None = None
+    """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
+    model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
+    along each bounded input dimension, and an epoch that ends in a cell no input has been in
+    is stored with the value of an untried action (``q_init``) after it instead of V-bar of its
+    end leaf, until ``novelty_terminals`` terminal epochs have been recorded; then every such
+    epoch is pointed at its end leaf. A tree refines where the agent has been, so a leaf that
+    reaches into an unvisited room looks as known as the room it was learnt in, and the
+    optimism of untried actions (eq. 10's start value) never reaches the new room; the counts
+    see it at a fixed resolution (R-max's "unknown" states, Brafman and Tennenholtz 2002).
+    None: off. At least 2; needs the model."""
+    novelty_terminals: int = 1
+    """With ``novelty_cells``: how many terminal epochs end the novel ends (at least 1)."""
     decision_steps: int | None = None
     """An epoch of an action that is not a held exploratory run ends after this many steps
     (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
@@ -336,6 +349,7 @@ class TreeConfig:
                 "the holds hold_terminals ends)"
             )
         self._check_model_split()
+        self._check_novelty()
         if self.decision_on_failure and self.decision_steps is None:
             raise ValueError(
                 "TreeConfig.decision_on_failure = True needs decision_steps (it gates them)"
@@ -399,6 +413,23 @@ class TreeConfig:
                 raise ValueError(f"TreeConfig.{name} must be a number >= 0, got {value!r}")
             if not math.isfinite(value):
                 raise ValueError(f"TreeConfig.{name} must be finite, got {value!r}")
+
+    def _check_novelty(self) -> None:
+        cells = self.novelty_cells
+        limit = self.novelty_terminals
+        if isinstance(limit, bool) or not isinstance(limit, int) or limit < 1:
+            raise ValueError(f"TreeConfig.novelty_terminals must be an int >= 1, got {limit!r}")
+        if cells is None:
+            return
+        if isinstance(cells, bool) or not isinstance(cells, int) or not 2 <= cells <= 1 << 20:
+            raise ValueError(
+                f"TreeConfig.novelty_cells must be an int in [2, 2^20] or None, got {cells!r}"
+            )
+        if self.planning != "sweep":
+            raise ValueError(
+                f"TreeConfig.novelty_cells = {cells!r} needs planning = 'sweep' (the model "
+                f"stores the novel ends), got planning = {self.planning!r}"
+            )
 
     def _check_model_split(self) -> None:
         epochs = self.model_split_epochs

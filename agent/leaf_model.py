@@ -31,6 +31,9 @@ from typing import Any
 Record = tuple[list[float], float, float, list[float] | None, int]
 """(first input, mean reward part R, mean discount D, end state or None if terminal, end leaf)."""
 _TERMINAL = -1
+_NOVEL = -2
+"""The end leaf of a novel end (``TreeConfig.novelty_cells``): V-bar after it is
+:attr:`LeafModel.novel_value`."""
 
 
 class LeafModel:
@@ -52,6 +55,10 @@ class LeafModel:
         self._priority: dict[int, float] = {}
         self.terminals = 0
         """Terminal epochs ever recorded (``TreeConfig.model_bonus_terminals`` reads it)."""
+        self.novel_value = 0.0
+        """V-bar after a novel end (the agent sets its ``q_init``; :mod:`agent.novelty`)."""
+        self.seen: dict[tuple[int, ...], int] = {}
+        """Inputs counted per novelty-grid cell (``TreeConfig.novelty_cells``)."""
 
     def count(self, leaf: int, action: int) -> int:
         """Epochs in the window of (leaf, action)."""
@@ -67,13 +74,15 @@ class LeafModel:
         discount: float,
         end: list[float] | None,
         end_leaf: int,
+        novel: bool = False,
     ) -> None:
-        """Store one epoch; ``end=None`` (and any ``end_leaf``) marks a terminal state."""
+        """Store one epoch; ``end=None`` (and any ``end_leaf``) marks a terminal state, and
+        ``novel`` a novel end (V-bar after it is :attr:`novel_value`; :mod:`agent.novelty`)."""
         key = leaf * self.n_actions + action
         records = self._records.get(key)
         if records is None:
             records = self._records[key] = deque()
-        target = _TERMINAL if end is None else end_leaf
+        target = _TERMINAL if end is None else _NOVEL if novel else end_leaf
         records.append((first, reward, discount, end, target))
         self._link(target, key, 1)
         if len(records) > self.window:
@@ -104,8 +113,11 @@ class LeafModel:
         if not records:
             return [], []
         firsts = [record[0] for record in records]
+        novel = self.novel_value
         values = [
-            reward if end is None else reward + discount * max(q[end_leaf])
+            reward
+            if end is None
+            else reward + discount * (novel if end_leaf == _NOVEL else max(q[end_leaf]))
             for _, reward, discount, end, end_leaf in records
         ]
         return firsts, values
@@ -275,8 +287,27 @@ class LeafModel:
         self._priority.pop(parent, None)
         return sorted(changed)
 
+    def end_novelty(self, leaf_of: Callable[[list[float]], int]) -> list[int]:
+        """Point every novel end at the leaf that holds its end state (``novelty_terminals``
+        reached); returns the keys changed, in order."""
+        changed: list[int] = []
+        for key, records in self._records.items():
+            if not any(record[4] == _NOVEL for record in records):
+                continue
+            refiled: deque[Record] = deque()
+            for first, reward, discount, end, end_leaf in records:
+                if end_leaf == _NOVEL and end is not None:
+                    end_leaf = leaf_of(end)
+                    self._link(end_leaf, key, 1)
+                refiled.append((first, reward, discount, end, end_leaf))
+            self._records[key] = refiled
+            changed.append(key)
+        for key in changed:
+            self._aggregate(key)
+        return changed
+
     def _link(self, end_leaf: int, key: int, change: int) -> None:
-        if end_leaf == _TERMINAL:
+        if end_leaf < 0:  # a terminal state or a novel end: no leaf to link
             return
         links = self._preds.get(end_leaf)
         if links is None:
@@ -295,7 +326,9 @@ class LeafModel:
         discount: dict[int, float] = {}
         for _, r, d, end, end_leaf in self._records[key]:
             reward += r
-            if end is not None:
+            if end_leaf == _NOVEL:
+                reward += d * self.novel_value
+            elif end is not None:
                 discount[end_leaf] = discount.get(end_leaf, 0.0) + d
         self._reward[key] = reward
         self._discount[key] = discount
@@ -304,7 +337,7 @@ class LeafModel:
         """JSON-ready state: every stored epoch, the epoch counts, the predecessor links and the
         sweep queue, each in its order (a sweep visits predecessors in the links' order and
         pops the heap as it lies, so a restored model continues bit for bit)."""
-        return {
+        state: dict[str, Any] = {
             "window": self.window,
             "records": [
                 [key, [[list(f), r, d, None if e is None else list(e), t] for f, r, d, e, t in rs]]
@@ -318,11 +351,17 @@ class LeafModel:
             "priority": [[leaf, p] for leaf, p in self._priority.items()],
             "terminals": self.terminals,
         }
+        if self.seen:  # TreeConfig.novelty_cells
+            state["seen"] = [[list(cell), n] for cell, n in self.seen.items()]
+        return state
 
     @classmethod
-    def from_state(cls, n_actions: int, state: dict[str, Any]) -> LeafModel:
-        """Inverse of :meth:`state`."""
+    def from_state(
+        cls, n_actions: int, state: dict[str, Any], novel_value: float = 0.0
+    ) -> LeafModel:
+        """Inverse of :meth:`state`; ``novel_value`` is V-bar after a novel end."""
         model = cls(n_actions, int(state["window"]))
+        model.novel_value = novel_value
         for key, records in state["records"]:
             bucket = model._records[int(key)] = deque()
             for first, reward, discount, end, end_leaf in records:
@@ -342,7 +381,7 @@ class LeafModel:
         expected: dict[int, dict[int, int]] = {}
         for key, bucket in model._records.items():
             for record in bucket:
-                if record[4] != _TERMINAL:
+                if record[4] >= 0:
                     links = expected.setdefault(record[4], {})
                     links[key] = links.get(key, 0) + 1
         if {leaf: dict(sorted(v.items())) for leaf, v in model._preds.items()} != {
@@ -356,4 +395,26 @@ class LeafModel:
         if isinstance(terminals, bool) or not isinstance(terminals, int) or terminals < 0:
             raise ValueError(f"the model's terminal count {terminals!r} is not an int >= 0")
         model.terminals = terminals
+        model.seen = _seen_cells(state.get("seen", []))  # absent in files before the field
         return model
+
+
+def _seen_cells(entries: Any) -> dict[tuple[int, ...], int]:
+    """The novelty counts of a saved model (``[[cell, count], ...]``), checked."""
+    if not isinstance(entries, list):
+        raise ValueError(f"the model's seen cells {entries!r} are not a list")
+    seen: dict[tuple[int, ...], int] = {}
+    for entry in entries:
+        ok = isinstance(entry, list) and len(entry) == 2 and isinstance(entry[0], list)
+        if ok:
+            cell, count = entry
+            ok = all(isinstance(i, int) and not isinstance(i, bool) and i >= 0 for i in cell)
+            ok = ok and isinstance(count, int) and not isinstance(count, bool) and count >= 1
+        if not ok:
+            raise ValueError(
+                f"the model's seen cell {entry!r} is not [[index >= 0, ...], count >= 1]"
+            )
+        if tuple(cell) in seen:
+            raise ValueError(f"the model's seen cell {cell!r} is listed twice")
+        seen[tuple(cell)] = count
+    return seen

@@ -24,6 +24,7 @@ from agent.exploration import Exploration, make_exploration
 from agent.inspection import LeafInfo, render_partition
 from agent.leaf_model import LeafModel
 from agent.model_split import choose_model_split
+from agent.novelty import NoveltyGrid
 from agent.partition import Partition
 from agent.partition_tree import PartitionTree
 from agent.random_stream import UniformStream
@@ -135,6 +136,12 @@ class SMDPAgent:
         q0 = cfg.q_init if optimistic is None else optimistic
         self.q_init = q0
         """Initial Q-bar of a new row: ``config.q_init`` or the strategy's optimistic value."""
+        if self.model is not None:
+            self.model.novel_value = q0
+        self.novelty = (
+            NoveltyGrid(low, high, cfg.novelty_cells) if cfg.novelty_cells is not None else None
+        )
+        """The grid of ``TreeConfig.novelty_cells`` (None: off)."""
         self.q: list[list[float]] = [[q0] * self.n_actions for _ in range(self.partition.n_ids)]
         self.visits: list[list[int]] = [[0] * self.n_actions for _ in range(self.partition.n_ids)]
         self.episodes_done = 0
@@ -309,7 +316,10 @@ class SMDPAgent:
                 sum(discounts) / tau,
                 None if terminated else end_x,
                 end_leaf,
+                self.novelty is not None and self._novel_end(xs, end_x, terminated),
             )
+            if terminated and self.novelty is not None and model.terminals == cfg.novelty_terminals:
+                self._stop_novelty()
             value = model.value(leaf, action, self.q)
             if value is not None:
                 new = value + self._bonus(leaf, action)
@@ -364,6 +374,42 @@ class SMDPAgent:
         if cfg.model_split_drops_pairs:
             return partition.split(leaf, *choice)
         return partition.split_with_samples(leaf, *choice)
+
+    def _novel_end(self, xs: list[list[float]], end_x: list[float], terminated: bool) -> bool:
+        """``TreeConfig.novelty_cells``: count the epoch's inputs and say whether it ended in a
+        cell no input has been in (:mod:`agent.novelty`). The terminal epoch that makes
+        ``novelty_terminals`` points every novel end at its leaf; from then on nothing is
+        counted."""
+        model = self.model
+        grid = self.novelty
+        assert model is not None
+        assert grid is not None
+        limit = self.config.novelty_terminals
+        if model.terminals >= limit:
+            return False
+        seen = model.seen
+        for x in xs:
+            cell = grid.cell(x)
+            seen[cell] = seen.get(cell, 0) + 1
+        return not terminated and grid.cell(end_x) not in seen
+
+    def _stop_novelty(self) -> None:
+        """``novelty_terminals`` terminal epochs recorded: every novel end now bootstraps from
+        its end leaf; the values it moves are set and their leaves queued for the sweeps."""
+        model = self.model
+        assert model is not None
+        q = self.q
+        for key in model.end_novelty(self.partition.leaf_of):
+            leaf, action = divmod(key, self.n_actions)
+            value = model.value(leaf, action, q)
+            if value is None:
+                continue
+            row = q[leaf]
+            before = max(row)
+            row[action] = value + self._bonus(leaf, action)
+            change = abs(max(row) - before)
+            if change > 0.0:
+                model.push(leaf, change)
 
     def _in_units(self, value: float) -> float:
         """A constant of ``TreeConfig`` in reward units (``threshold_units``)."""
@@ -653,7 +699,7 @@ class SMDPAgent:
             if "scale" in learner:
                 agent.scale.restore(learner["scale"])
             if "model" in learner and agent.model is not None:
-                agent.model = LeafModel.from_state(agent.n_actions, learner["model"])
+                agent.model = LeafModel.from_state(agent.n_actions, learner["model"], agent.q_init)
             if "gate" in learner and hasattr(agent.partition, "terminals"):
                 terminals = learner["gate"].get("terminals")
                 if isinstance(terminals, bool) or not isinstance(terminals, int) or terminals < 0:
