@@ -21,7 +21,9 @@ can build it by name::
   aliasing breaks a learnt path; docs/paper-notes.md, "The leaf cap"), and exploratory
   actions held only until 100 terminal transitions have been seen (issue 9, part 8: after
   that a held run is a long detour from a greedy path that is already good;
-  docs/paper-notes.md, "Held exploration until n terminals"). It runs on
+  docs/paper-notes.md, "Held exploration until n terminals"), leaves split where one action's
+  stored epochs disagree (part 9, "Model-driven splits"), and epochs that end where no input
+  has been bootstrap from ``q_init`` until 10 terminal epochs (part 10, "Novel ends"). It runs on
   :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop, which that option needs.
 """
 
@@ -88,7 +90,7 @@ PAPER_LITERAL = Preset(
 GENERAL = Preset(
     "general",
     "one set of defaults for every task: measured units, a model over the leaves, sweeping, "
-    "held exploration until 100 terminals, model-driven splits",
+    "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -101,6 +103,8 @@ GENERAL = Preset(
         max_leaves=16384,
         hold_terminals=100,
         model_split_epochs=8,
+        novelty_cells=64,
+        novelty_terminals=10,
     ),
     "adaptive+tabu",
 )

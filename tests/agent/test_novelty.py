@@ -199,10 +199,10 @@ def test_bad_values_are_refused_by_name(fields: dict[str, Any], match: str) -> N
         TreeConfig(**base)
 
 
-def test_the_presets_leave_it_off_and_the_ensemble_loop_runs_it(
+def test_the_paper_presets_leave_it_off_and_the_ensemble_loop_runs_it(
     make_corridor: Callable[..., Any],
 ) -> None:
-    for name in ("paper", "paper-literal", "general"):
+    for name in ("paper", "paper-literal"):
         assert preset(name).config.novelty_cells is None
     env = make_corridor(max_steps=50, goal_radius=0.0)
     config = dataclasses.replace(preset("general").config, novelty_cells=16)

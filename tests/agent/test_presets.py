@@ -40,12 +40,14 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"max_leaves"}  # a guard of memory; 16,384 in the general preset
     others |= {"hold_terminals"}  # issue 9, part 8
     others |= {"model_split_epochs"}  # issue 9, part 9
+    others |= {"novelty_cells", "novelty_terminals"}  # issue 9, part 10
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
     assert general.max_leaves == 16384  # issue 9, part 7 (docs/paper-notes.md, "The leaf cap")
     assert general.hold_terminals == 100  # issue 9, part 8 ("Held exploration until n terminals")
     assert general.model_split_epochs == 8  # issue 9, part 9 ("Model-driven splits")
+    assert (general.novelty_cells, general.novelty_terminals) == (64, 10)  # part 10 ("Novel ends")
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -80,7 +82,11 @@ def test_part8_comparisons_set_the_preset_against_part_7s(kind: str) -> None:
     # part 7's preset: today's without held exploration's end (hold_terminals, part 8) and
     # without model-driven splits (part 9)
     part7 = dataclasses.replace(
-        preset("general").config, hold_terminals=None, model_split_epochs=None
+        preset("general").config,
+        hold_terminals=None,
+        model_split_epochs=None,
+        novelty_cells=None,
+        novelty_terminals=1,
     )
     assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == part7
 
@@ -94,8 +100,22 @@ def test_part9_comparisons_set_the_preset_against_part_8s(kind: str) -> None:
         return  # the paper comparison runs the preset alone (part 8's runs: its own file)
     old = by_name["general-part8"]
     assert old["exploration"] == preset("general").exploration
-    part8 = dataclasses.replace(preset("general").config, model_split_epochs=None)
+    part8 = dataclasses.replace(
+        preset("general").config, model_split_epochs=None, novelty_cells=None, novelty_terminals=1
+    )
     assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == part8
+
+
+@pytest.mark.parametrize("kind", ["classic", "mazes", "paper"])
+def test_part10_comparisons_set_the_preset_against_part_9s(kind: str) -> None:
+    data = tomllib.loads((EXPERIMENT_DIR / f"novelty_{kind}.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    old = by_name["general-part9"]
+    assert old["exploration"] == preset("general").exploration
+    part9 = dataclasses.replace(preset("general").config, novelty_cells=None, novelty_terminals=1)
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == part9
+    assert data["experiment"]["seed"] == {"classic": 90901, "mazes": 90902, "paper": 90903}[kind]
 
 
 @pytest.mark.parametrize("kind", ["classic", "mazes"])
