@@ -4,7 +4,7 @@
 :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop, which part 6 measured about 11 %
 slower per step than ``TreeAgent``'s on a maze, and it changes how many steps a run takes (an
 exploratory detour ends sooner). This prints, for part 8's general preset (today's without
-``model_split_epochs``) and for part 7's (that without ``hold_terminals``, on ``TreeAgent``'s
+``model_split_epochs`` and novel ends) and for part 7's (that without ``hold_terminals``, on ``TreeAgent``'s
 loop), the CPU seconds per 1,000
 environment steps and per learning episode over ``--episodes`` episodes, on MountainCar-v0 and
 on the ``paper`` maze, in interleaved rounds (CPU time of this process, the agent built before
@@ -25,7 +25,9 @@ from agent import preset
 
 
 def main() -> None:
-    part8 = dataclasses.replace(preset("general").config, model_split_epochs=None)
+    part8 = dataclasses.replace(
+        preset("general").config, model_split_epochs=None, novelty_cells=None, novelty_terminals=1
+    )
     part7 = dataclasses.replace(part8, hold_terminals=None)
     compare_main(__doc__.split("\n\n")[0], "part 7", part7, part8)
 

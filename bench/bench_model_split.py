@@ -3,10 +3,10 @@
 ``TreeConfig.model_split_epochs`` tests, after each epoch that did not split, the stored epochs
 of the epoch's (leaf, action): their targets under the current values and the best cut along
 every input dimension (``agent/model_split.py``), in Python. It also changes the tree the agent
-grows, and so the cost of everything else. This prints, for the general preset and for part 8's
-(the same without ``model_split_epochs``), the CPU seconds per 1,000 environment steps and per
+grows, and so the cost of everything else. This prints, for part 9's general preset (today's
+without novel ends) and for part 8's (that without ``model_split_epochs``), the CPU seconds per 1,000 environment steps and per
 learning episode over ``--episodes`` episodes, on MountainCar-v0 and on the ``paper`` maze, in
-interleaved rounds, and the ratios preset / part 8 (median over rounds, with their range).
+interleaved rounds, and the ratios part 9 / part 8 (median over rounds, with their range).
 
     python bench/bench_model_split.py                 # 3 rounds, about a minute
     python bench/bench_model_split.py --rounds 1 --episodes 100
@@ -22,9 +22,10 @@ from agent import preset
 
 
 def main() -> None:
-    general = preset("general").config
-    part8 = dataclasses.replace(general, model_split_epochs=None)
-    compare_main(__doc__.split("\n\n")[0], "part 8", part8, general)
+    # part 9's preset: today's without novel ends (part 10)
+    part9 = dataclasses.replace(preset("general").config, novelty_cells=None, novelty_terminals=1)
+    part8 = dataclasses.replace(part9, model_split_epochs=None)
+    compare_main(__doc__.split("\n\n")[0], "part 8", part8, part9)
 
 
 if __name__ == "__main__":
