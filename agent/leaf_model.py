@@ -273,14 +273,7 @@ class LeafModel:
                     share = received * epochs // len(records)
                     self.epochs[child * n_actions + action] = max(received, share)
         for key in list(self._preds.pop(parent, {})):
-            records = self._records[key]
-            refiled: deque[Record] = deque()
-            for first, reward, discount, end, end_leaf in records:
-                if end_leaf == parent and end is not None:
-                    end_leaf = leaf_of(end)
-                    self._link(end_leaf, key, 1)
-                refiled.append((first, reward, discount, end, end_leaf))
-            self._records[key] = refiled
+            self._repoint(key, parent, leaf_of)
             changed.add(key)
         for key in changed:
             self._aggregate(key)
@@ -290,21 +283,27 @@ class LeafModel:
     def end_novelty(self, leaf_of: Callable[[list[float]], int]) -> list[int]:
         """Point every novel end at the leaf that holds its end state (``novelty_terminals``
         reached); returns the keys changed, in order."""
-        changed: list[int] = []
-        for key, records in self._records.items():
-            if not any(record[4] == _NOVEL for record in records):
-                continue
-            refiled: deque[Record] = deque()
-            for first, reward, discount, end, end_leaf in records:
-                if end_leaf == _NOVEL and end is not None:
-                    end_leaf = leaf_of(end)
-                    self._link(end_leaf, key, 1)
-                refiled.append((first, reward, discount, end, end_leaf))
-            self._records[key] = refiled
-            changed.append(key)
+        changed = [
+            key
+            for key, records in self._records.items()
+            if any(record[4] == _NOVEL for record in records)
+        ]
         for key in changed:
+            self._repoint(key, _NOVEL, leaf_of)
             self._aggregate(key)
         return changed
+
+    def _repoint(self, key: int, old: int, leaf_of: Callable[[list[float]], int]) -> None:
+        """The stored epochs of ``key`` that end at ``old`` (a split leaf, or :data:`_NOVEL`)
+        end at the leaf ``leaf_of`` gives their end state, and are linked to it (the caller
+        re-aggregates ``key``)."""
+        refiled: deque[Record] = deque()
+        for first, reward, discount, end, end_leaf in self._records[key]:
+            if end_leaf == old and end is not None:
+                end_leaf = leaf_of(end)
+                self._link(end_leaf, key, 1)
+            refiled.append((first, reward, discount, end, end_leaf))
+        self._records[key] = refiled
 
     def _link(self, end_leaf: int, key: int, change: int) -> None:
         if end_leaf < 0:  # a terminal state or a novel end: no leaf to link
