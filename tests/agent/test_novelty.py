@@ -4,6 +4,7 @@ first terminals (agent/novelty.py)."""
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 from collections.abc import Callable
 from pathlib import Path
@@ -213,3 +214,24 @@ def test_the_paper_presets_leave_it_off_and_the_ensemble_loop_runs_it(
     models = [m.model for m in getattr(agent, "members", [agent])]
     assert all(m is not None and sum(m.seen.values()) == 100 for m in models)
     assert np.isfinite(np.asarray(agent.q, dtype=float)).all()
+
+
+@pytest.mark.parametrize(
+    "entries", [[[[0, 1], 0]], [[[0, -2], 3]], [[["0", 1], 3]], "seen", [[[0, 1], 2, 3]]]
+)
+def test_damaged_counts_in_a_file_are_refused_by_name(
+    tmp_path: Path, make_corridor: Callable[..., Any], entries: Any
+) -> None:
+    env = make_corridor(max_steps=30, goal_radius=0.0)
+    agent = _agent(env, dataclasses.replace(SWEEP, novelty_cells=10))
+    agent.learn(env, 1, reset_seed=0)
+    with np.load(agent.save(tmp_path / "good.npz"), allow_pickle=False) as data:
+        arrays = {key: data[key].copy() for key in data.files}
+    meta = json.loads(arrays.pop("metadata").tobytes())
+    assert meta["learner"]["model"]["seen"]  # the counts are in the file
+    meta["learner"]["model"]["seen"] = entries
+    bad = tmp_path / "bad.npz"
+    np.savez(bad, metadata=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **arrays)
+    with pytest.raises(ValueError, match="seen cell") as error:
+        TreeAgent.load(bad)
+    assert str(bad) in str(error.value)

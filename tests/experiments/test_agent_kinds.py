@@ -331,3 +331,35 @@ def test_bad_model_split_options_name_the_file_and_field(
     message = str(error.value)
     assert message.startswith("kinds.toml: [strategy.1]"), message
     assert defect in message, message
+
+
+@pytest.mark.parametrize(
+    ("config", "defect"),
+    [
+        ({"novelty_cells": 1}, "novelty_cells must be an int in [2, 2^20] or None, got 1"),
+        ({"novelty_cells": 1 << 21}, "novelty_cells must be an int in [2, 2^20]"),
+        ({"novelty_cells": True}, "novelty_cells: expected an integer"),
+        ({"novelty_cells": 6.5}, "novelty_cells: expected an integer"),
+        ({"novelty_cells": "64"}, "novelty_cells: expected an integer"),
+        ({"novelty_terminals": 0}, "novelty_terminals must be an int >= 1, got 0"),
+        ({"novelty_terminals": -3}, "novelty_terminals must be an int >= 1, got -3"),
+        ({"novelty_terminals": "10"}, "novelty_terminals: expected an integer"),
+    ],
+)
+def test_bad_novelty_options_name_the_file_and_field(config: dict[str, Any], defect: str) -> None:
+    """Part 10's options in a strategy table: every bad value is refused by name."""
+    with pytest.raises(ConfigError) as error:
+        _parse({"name": "novel", "preset": "general", "config": config})
+    message = str(error.value)
+    assert message.startswith("kinds.toml: [strategy.1]"), message
+    assert defect in message, message
+
+
+def test_novel_ends_without_the_model_name_the_file_and_field() -> None:
+    # a strategy of its own (no preset): planning keeps its default, "none"
+    strategy = {"name": "novel", "exploration": "adaptive+tabu", "config": {"novelty_cells": 64}}
+    with pytest.raises(ConfigError) as error:
+        _parse(strategy)
+    message = str(error.value)
+    assert message.startswith("kinds.toml: [strategy.1]"), message
+    assert "novelty_cells = 64 needs planning = 'sweep'" in message, message
