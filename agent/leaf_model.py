@@ -16,7 +16,9 @@ backups per epoch. It is Dyna over the tree with the model's expectation instead
 replays. Each epoch also remembers its first input, so that a split hands every stored epoch to
 the child that holds where it began, and re-points the epochs that ended in the split leaf to
 the child that holds where they ended: after a split both children have values of their own at
-once (value propagation after a split).
+once (value propagation after a split). With ``TreeConfig.novelty_cells`` an epoch may instead
+end at a *novel end*, valued ``q_init`` after it, until the agent points it at its end leaf
+(:mod:`agent.novelty`).
 
 Keys are ``leaf * n_actions + action``. The state is plain data (:meth:`state`).
 """
