@@ -47,6 +47,16 @@ def _parse(*strategies: dict[str, Any]) -> Any:
     return parse_config(_with(*strategies), source="kinds.toml")
 
 
+def _refusal(strategy: dict[str, Any]) -> str:
+    """The ConfigError of a file holding ``strategy`` alone, which must name the file and the
+    strategy's table first."""
+    with pytest.raises(ConfigError) as error:
+        _parse(strategy)
+    message = str(error.value)
+    assert message.startswith("kinds.toml: [strategy.1]"), message
+    return message
+
+
 @pytest.fixture(scope="module")
 def car() -> gym.Env:
     env = gym.make("MountainCar-v0")
@@ -192,10 +202,7 @@ def test_every_kind_round_trips(tmp_path: Path):
     ],
 )
 def test_errors_name_the_file_the_strategy_and_the_field(strategy: dict[str, Any], named: str):
-    with pytest.raises(ConfigError) as error:
-        _parse(strategy)
-    message = str(error.value)
-    assert message.startswith("kinds.toml: [strategy.1]"), message
+    message = _refusal(strategy)
     assert named in message, message
 
 
@@ -298,10 +305,7 @@ def test_bad_hold_options_on_the_general_preset_name_the_file_and_field(
         strategy = {"name": "held", "exploration": "adaptive+tabu", "config": spelt}
     else:
         strategy = {"name": "held", "preset": "general", "config": config}
-    with pytest.raises(ConfigError) as error:
-        _parse(strategy)
-    message = str(error.value)
-    assert message.startswith("kinds.toml: [strategy.1]"), message
+    message = _refusal(strategy)
     assert defect in message, message
 
 
@@ -326,10 +330,7 @@ def test_bad_model_split_options_name_the_file_and_field(
     config: dict[str, Any], defect: str
 ) -> None:
     """Part 9's options in a strategy table: every bad value is refused by name."""
-    with pytest.raises(ConfigError) as error:
-        _parse({"name": "split", "preset": "general", "config": config})
-    message = str(error.value)
-    assert message.startswith("kinds.toml: [strategy.1]"), message
+    message = _refusal({"name": "split", "preset": "general", "config": config})
     assert defect in message, message
 
 
@@ -348,18 +349,12 @@ def test_bad_model_split_options_name_the_file_and_field(
 )
 def test_bad_novelty_options_name_the_file_and_field(config: dict[str, Any], defect: str) -> None:
     """Part 10's options in a strategy table: every bad value is refused by name."""
-    with pytest.raises(ConfigError) as error:
-        _parse({"name": "novel", "preset": "general", "config": config})
-    message = str(error.value)
-    assert message.startswith("kinds.toml: [strategy.1]"), message
+    message = _refusal({"name": "novel", "preset": "general", "config": config})
     assert defect in message, message
 
 
 def test_novel_ends_without_the_model_name_the_file_and_field() -> None:
     # a strategy of its own (no preset): planning keeps its default, "none"
     strategy = {"name": "novel", "exploration": "adaptive+tabu", "config": {"novelty_cells": 64}}
-    with pytest.raises(ConfigError) as error:
-        _parse(strategy)
-    message = str(error.value)
-    assert message.startswith("kinds.toml: [strategy.1]"), message
+    message = _refusal(strategy)
     assert "novelty_cells = 64 needs planning = 'sweep'" in message, message
