@@ -72,13 +72,20 @@ class TreeConfig:
     """Units of ``split_max_abs_mean``, ``split_min_variance`` and ``sweep_tolerance`` and
     ``model_bonus``: "reward" (as printed: Table I's values are in the maze's reward units) or
     "scale" (multiples of the value unit the agent measures, the median nonzero |reward| seen so
-    far over 1 - gamma, :class:`agent.scale.RewardScale`: 1 on the paper's maze, 100 on
+    far times ``scale_horizon`` (1 / (1 - gamma) unless set), :class:`agent.scale.RewardScale`:
+    1 on the paper's maze, 100 on
     MountainCar; the variance threshold is a multiple of its square), so that one set of values
     fits any reward scale."""
     scale_rule: ScaleRule = "return_std"
     """The measured unit of ``threshold_units="scale"``: "return_std", the standard deviation of
     every eq. (9) return so far (:class:`agent.scale.ReturnScale`), or "reward_median", the
-    median nonzero |reward| over 1 - gamma (:class:`agent.scale.RewardScale`)."""
+    median nonzero |reward| times ``scale_horizon`` (:class:`agent.scale.RewardScale`)."""
+    scale_horizon: float | None = None
+    """With ``scale_rule="reward_median"``: the horizon H of the unit ``median |r| x H``. None
+    (the default) is ``1 / (1 - gamma)``, so the unit follows the discount. A number keeps the
+    split test's unit fixed while ``gamma`` moves: the general preset uses ``gamma`` 0.995 with
+    H = 100, the unit of ``gamma`` 0.99 (docs/paper-notes.md, "A longer discount"). Steps, so
+    it needs no scale; in [1, 10^6]."""
     split_min_t: float = 0.0
     """A fourth split condition, a significance gate: split only if, in some dimension, the
     inputs with positive errors and those with negative errors lie apart by at least this Welch
@@ -371,6 +378,15 @@ class TreeConfig:
         _check_choice("threshold_units", self.threshold_units, ("reward", "scale"))
         _check_choice("planning", self.planning, ("none", "sweep"))
         _check_choice("scale_rule", self.scale_rule, ("reward_median", "return_std", "return_iqr"))
+        horizon = self.scale_horizon
+        if horizon is not None and (
+            isinstance(horizon, bool)
+            or not isinstance(horizon, int | float)
+            or not 1.0 <= horizon <= 1e6
+        ):
+            raise ValueError(
+                f"TreeConfig.scale_horizon must be None or a number in [1, 1e6], got {horizon!r}"
+            )
         for name, least in (
             ("model_window", 1),
             ("sweep_backups", 0),

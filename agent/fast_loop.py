@@ -106,6 +106,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     # the others matter only with a measured unit or the model, which turn the loop off here.
     "threshold_units": ("reward",),
     "scale_rule": ("return_std", "return_iqr", "reward_median"),
+    "scale_horizon": (float, int, type(None)),
     "split_min_t": (float, int),
     "planning": ("none",),
     "model_window": int,

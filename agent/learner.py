@@ -120,7 +120,7 @@ class SMDPAgent:
         elif cfg.scale_rule == "return_iqr":
             self.scale = ReturnSpread()
         else:
-            self.scale = RewardScale(cfg.gamma)
+            self.scale = RewardScale(cfg.gamma, cfg.scale_horizon)
         """The reward scale measured so far (``TreeConfig.threshold_units="scale"``)."""
         self._track_scale = cfg.threshold_units == "scale"
         self.model: LeafModel | None = (

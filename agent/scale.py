@@ -34,15 +34,20 @@ BINS_PER_OCTAVE = 16
 
 
 class RewardScale:
-    """Running median of the nonzero reward magnitudes as a value unit, ``median / (1 - gamma)``."""
+    """Running median of the nonzero reward magnitudes as a value unit, ``median x H`` with
+    ``H = 1 / (1 - gamma)`` or a given horizon (``TreeConfig.scale_horizon``)."""
 
-    __slots__ = ("_binned", "_counts", "_horizon", "_unit", "gamma", "total")
+    __slots__ = ("_binned", "_counts", "_horizon", "_unit", "gamma", "horizon", "total")
 
-    def __init__(self, gamma: float) -> None:
+    def __init__(self, gamma: float, horizon: float | None = None) -> None:
         if not 0.0 <= gamma <= 1.0:
             raise ValueError(f"RewardScale: gamma must be in [0, 1], got {gamma!r}")
+        if horizon is not None and not 1.0 <= horizon <= 1e6:
+            raise ValueError(f"RewardScale: horizon must be in [1, 1e6], got {horizon!r}")
         self.gamma = gamma
-        self._horizon = 1.0 / (1.0 - gamma) if gamma < 1.0 else 1.0
+        self.horizon = horizon
+        """``TreeConfig.scale_horizon``: the unit's H, or None for ``1 / (1 - gamma)``."""
+        self._horizon = _horizon(gamma, horizon)
         self.total = 0
         self._counts: dict[float, int] = {}
         """magnitude -> count (exact), or log-bin index (as a float) -> count (binned)."""
@@ -98,7 +103,7 @@ class RewardScale:
     def restore(self, state: dict[str, Any]) -> None:
         """Inverse of :meth:`state`."""
         self.gamma = float(state["gamma"])
-        self._horizon = 1.0 / (1.0 - self.gamma) if self.gamma < 1.0 else 1.0
+        self._horizon = _horizon(self.gamma, self.horizon)  # the horizon is the config's
         self.total = int(state["total"])
         self._binned = bool(state["binned"])
         self._counts = {float(k): int(n) for k, n in state["counts"]}
@@ -106,6 +111,13 @@ class RewardScale:
 
     def __repr__(self) -> str:
         return f"RewardScale(rewards={self.total}, value={self.value:.6g})"
+
+
+def _horizon(gamma: float, horizon: float | None) -> float:
+    """The unit's H: ``horizon`` when given, else ``1 / (1 - gamma)`` (1 at gamma = 1)."""
+    if horizon is not None:
+        return horizon
+    return 1.0 / (1.0 - gamma) if gamma < 1.0 else 1.0
 
 
 def _bin(magnitude: float) -> float:

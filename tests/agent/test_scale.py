@@ -28,6 +28,38 @@ def test_reward_scale_is_the_median_magnitude_over_one_minus_gamma() -> None:
     assert RewardScale(1.0).gamma == 1.0
 
 
+def test_a_given_horizon_replaces_one_over_one_minus_gamma() -> None:
+    s = RewardScale(0.995, horizon=100.0)
+    s.add([-1.0, -1.0, 5.0])
+    assert s.value == 100.0  # median 1 times H, not 1 / (1 - 0.995) = 200
+    copy = RewardScale(0.995, horizon=100.0)
+    copy.restore(s.state())
+    assert copy.value == s.value
+    assert RewardScale(0.995).value == 0.0
+    with pytest.raises(ValueError, match="horizon must be in"):
+        RewardScale(0.99, horizon=0.5)
+
+
+def test_scale_horizon_keeps_the_unit_when_gamma_moves(make_corridor: Callable[..., Any]) -> None:
+    def unit(**fields: Any) -> float:
+        env = make_corridor()
+        config = TreeConfig(threshold_units="scale", scale_rule="reward_median", **fields)
+        agent = TreeAgent(env.observation_space, env.action_space, "adaptive+tabu", 3, config)
+        agent.learn(env, 3, reset_seed=5)
+        return float(agent.scale.value)
+
+    base = unit(gamma=0.99)
+    assert base > 0.0
+    assert unit(gamma=0.995, scale_horizon=100.0) == pytest.approx(base)
+    assert unit(gamma=0.995) == pytest.approx(2.0 * base)  # the unit follows gamma by default
+
+
+@pytest.mark.parametrize("bad", [0.0, 0.99, -5.0, 2e6, float("nan"), float("inf"), True, "100"])
+def test_bad_scale_horizon_is_refused_by_name(bad: Any) -> None:
+    with pytest.raises(ValueError, match=r"TreeConfig\.scale_horizon must be None or a number"):
+        TreeConfig(scale_horizon=bad)
+
+
 def test_reward_scale_bins_continuous_rewards() -> None:
     rewards = np.random.default_rng(0).normal(size=2 * EXACT_VALUES).tolist()
     s = RewardScale(0.0)

@@ -353,6 +353,22 @@ def test_bad_novelty_options_name_the_file_and_field(config: dict[str, Any], def
     assert defect in message, message
 
 
+@pytest.mark.parametrize(
+    ("config", "defect"),
+    [
+        ({"scale_horizon": 0.5}, "scale_horizon must be None or a number in [1, 1e6], got 0.5"),
+        ({"scale_horizon": 1e7}, "scale_horizon must be None or a number in [1, 1e6]"),
+        ({"scale_horizon": float("nan")}, "config.scale_horizon: must be finite, got nan"),
+        ({"scale_horizon": True}, "scale_horizon: expected a number or nothing (none), got true"),
+        ({"scale_horizon": "100"}, "scale_horizon: expected a number or nothing (none), got '100'"),
+    ],
+)
+def test_bad_scale_horizon_names_the_file_and_field(config: dict[str, Any], defect: str) -> None:
+    """The unit's horizon in a strategy table: every bad value is refused by name."""
+    message = _refusal({"name": "horizon", "preset": "general", "config": config})
+    assert defect in message, message
+
+
 def test_novel_ends_without_the_model_name_the_file_and_field() -> None:
     # a strategy of its own (no preset): planning keeps its default, "none"
     strategy = {"name": "novel", "exploration": "adaptive+tabu", "config": {"novelty_cells": 64}}
