@@ -28,7 +28,7 @@ from agent.exploration import (
 from agent.grid_agent import GridAgent
 from agent.inspection import LeafInfo
 from agent.learner import SMDPAgent
-from agent.presets import PRESETS, Preset, preset
+from agent.presets import PRESETS, Preset, general_as_of, preset
 from agent.tile_coding import TileCodingAgent
 from agent.tree_agent import TreeAgent
 
@@ -55,6 +55,7 @@ __all__ = [
     "TreeAgent",
     "TreeConfig",
     "VDBESoftmax",
+    "general_as_of",
     "make_exploration",
     "preset",
 ]

@@ -29,6 +29,7 @@ can build it by name::
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -105,10 +106,31 @@ GENERAL = Preset(
         model_split_epochs=8,
         novelty_cells=64,
         novelty_terminals=10,
+        gamma=0.999,
+        scale_horizon=100.0,
     ),
     "adaptive+tabu",
 )
 PRESETS: dict[str, Preset] = {p.name: p for p in (PAPER, PAPER_LITERAL, GENERAL)}
+
+GENERAL_CHANGES: dict[int, dict[str, Any]] = {
+    8: {"hold_terminals": None},
+    9: {"model_split_epochs": None},
+    10: {"novelty_cells": None, "novelty_terminals": 1},
+    11: {"gamma": 0.99, "scale_horizon": None},
+}
+"""The fields that issue 9's parts 8 and later changed in the general preset, each with its value
+before that part (docs/results.md, "A learner that is fast everywhere")."""
+
+
+def general_as_of(part: int) -> TreeConfig:
+    """The general preset's config as it was after issue 9's part ``part`` (7 or later): today's,
+    with every field a later part changed back at its earlier value. The held-out comparisons
+    spell these out (``experiments/*.toml``), and the benches time them."""
+    if isinstance(part, bool) or not isinstance(part, int) or part < 7:
+        raise ValueError(f"general_as_of: part must be an int >= 7, got {part!r}")
+    earlier = {k: v for n, fields in GENERAL_CHANGES.items() if n > part for k, v in fields.items()}
+    return dataclasses.replace(GENERAL.config, **earlier)
 
 
 def preset(name: str) -> Preset:

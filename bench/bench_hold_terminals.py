@@ -17,19 +17,13 @@ they take different steps.
 
 from __future__ import annotations
 
-import dataclasses
-
 from bench_general import compare_main  # the same tasks and timing (bench/)
 
-from agent import preset
+from agent import general_as_of
 
 
 def main() -> None:
-    part8 = dataclasses.replace(
-        preset("general").config, model_split_epochs=None, novelty_cells=None, novelty_terminals=1
-    )
-    part7 = dataclasses.replace(part8, hold_terminals=None)
-    compare_main(__doc__.split("\n\n")[0], "part 7", part7, part8)
+    compare_main(__doc__.split("\n\n")[0], "part 7", general_as_of(7), general_as_of(8))
 
 
 if __name__ == "__main__":

@@ -15,18 +15,13 @@ MountainCar-v0 and on the ``paper`` maze, in interleaved rounds, and the ratios 
 
 from __future__ import annotations
 
-import dataclasses
-
 from bench_general import compare_main  # the same tasks and timing (bench/)
 
-from agent import preset
+from agent import general_as_of
 
 
 def main() -> None:
-    # part 9's preset: today's without novel ends (part 10)
-    part9 = dataclasses.replace(preset("general").config, novelty_cells=None, novelty_terminals=1)
-    part8 = dataclasses.replace(part9, model_split_epochs=None)
-    compare_main(__doc__.split("\n\n")[0], "part 8", part8, part9)
+    compare_main(__doc__.split("\n\n")[0], "part 8", general_as_of(8), general_as_of(9))
 
 
 if __name__ == "__main__":

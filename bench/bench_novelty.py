@@ -13,17 +13,13 @@ and the ratios preset / part 9 (median over rounds, with their range).
 
 from __future__ import annotations
 
-import dataclasses
-
 from bench_general import compare_main  # the same tasks and timing (bench/)
 
-from agent import preset
+from agent import general_as_of
 
 
 def main() -> None:
-    general = preset("general").config
-    part9 = dataclasses.replace(general, novelty_cells=None, novelty_terminals=1)
-    compare_main(__doc__.split("\n\n")[0], "part 9", part9, general)
+    compare_main(__doc__.split("\n\n")[0], "part 9", general_as_of(9), general_as_of(10))
 
 
 if __name__ == "__main__":

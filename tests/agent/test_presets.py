@@ -8,7 +8,7 @@ import tomllib
 import pytest
 from gymnasium import spaces
 
-from agent import PRESETS, TreeConfig, preset
+from agent import PRESETS, TreeConfig, general_as_of, preset
 from agent.tree_ensemble import TreeEnsembleAgent
 from experiments import EXPERIMENT_DIR
 
@@ -41,6 +41,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"hold_terminals"}  # issue 9, part 8
     others |= {"model_split_epochs"}  # issue 9, part 9
     others |= {"novelty_cells", "novelty_terminals"}  # issue 9, part 10
+    others |= {"gamma", "scale_horizon"}  # issue 9, part 11
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -48,6 +49,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.hold_terminals == 100  # issue 9, part 8 ("Held exploration until n terminals")
     assert general.model_split_epochs == 8  # issue 9, part 9 ("Model-driven splits")
     assert (general.novelty_cells, general.novelty_terminals) == (64, 10)  # part 10 ("Novel ends")
+    assert (general.gamma, general.scale_horizon) == (0.999, 100.0)  # part 11 ("A longer discount")
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -79,16 +81,7 @@ def test_part8_comparisons_set_the_preset_against_part_7s(kind: str) -> None:
     assert by_name["general"]["preset"] == "general"
     old = by_name["general-part7"]
     assert old["exploration"] == preset("general").exploration
-    # part 7's preset: today's without held exploration's end (hold_terminals, part 8) and
-    # without model-driven splits (part 9)
-    part7 = dataclasses.replace(
-        preset("general").config,
-        hold_terminals=None,
-        model_split_epochs=None,
-        novelty_cells=None,
-        novelty_terminals=1,
-    )
-    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == part7
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(7)
 
 
 @pytest.mark.parametrize("kind", ["classic", "mazes", "paper"])
@@ -100,10 +93,7 @@ def test_part9_comparisons_set_the_preset_against_part_8s(kind: str) -> None:
         return  # the paper comparison runs the preset alone (part 8's runs: its own file)
     old = by_name["general-part8"]
     assert old["exploration"] == preset("general").exploration
-    part8 = dataclasses.replace(
-        preset("general").config, model_split_epochs=None, novelty_cells=None, novelty_terminals=1
-    )
-    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == part8
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(8)
 
 
 @pytest.mark.parametrize("kind", ["classic", "mazes", "paper"])
@@ -113,9 +103,19 @@ def test_part10_comparisons_set_the_preset_against_part_9s(kind: str) -> None:
     assert by_name["general"] == {"name": "general", "preset": "general"}
     old = by_name["general-part9"]
     assert old["exploration"] == preset("general").exploration
-    part9 = dataclasses.replace(preset("general").config, novelty_cells=None, novelty_terminals=1)
-    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == part9
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(9)
     assert data["experiment"]["seed"] == {"classic": 90901, "mazes": 90902, "paper": 90903}[kind]
+
+
+@pytest.mark.parametrize("kind", ["classic", "mazes", "paper"])
+def test_part11_comparisons_set_the_preset_against_part_10s(kind: str) -> None:
+    data = tomllib.loads((EXPERIMENT_DIR / f"horizon_{kind}.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    old = by_name["general-part10"]
+    assert old["exploration"] == preset("general").exploration
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(10)
+    assert data["experiment"]["seed"] == {"classic": 11101, "mazes": 11102, "paper": 11103}[kind]
 
 
 @pytest.mark.parametrize("kind", ["classic", "mazes"])
@@ -126,3 +126,16 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
     candidate = by_name["general-from-terminal"]
     assert candidate["preset"] == "general"
     assert candidate["config"] == {"model_split_from_terminal": True}
+
+
+def test_general_as_of_turns_back_each_later_part() -> None:
+    now = preset("general").config
+    assert general_as_of(11) == now
+    assert general_as_of(10) == dataclasses.replace(now, gamma=0.99, scale_horizon=None)
+    assert general_as_of(9).novelty_cells is None
+    assert general_as_of(9).gamma == 0.99
+    assert general_as_of(7).hold_terminals is None
+    assert general_as_of(8).hold_terminals == 100
+    for bad in (6, True, "9", 8.0):
+        with pytest.raises(ValueError, match="general_as_of: part must be an int >= 7"):
+            general_as_of(bad)  # type: ignore[arg-type]
