@@ -97,25 +97,22 @@ def test_part9_comparisons_set_the_preset_against_part_8s(kind: str) -> None:
 
 
 @pytest.mark.parametrize("kind", ["classic", "mazes", "paper"])
-def test_part10_comparisons_set_the_preset_against_part_9s(kind: str) -> None:
-    data = tomllib.loads((EXPERIMENT_DIR / f"novelty_{kind}.toml").read_text())
+@pytest.mark.parametrize(
+    ("prefix", "part", "first_seed"), [("novelty", 10, 90901), ("horizon", 11, 11101)]
+)
+def test_each_part_sets_the_preset_against_the_part_before(
+    kind: str, prefix: str, part: int, first_seed: int
+) -> None:
+    """Parts 10 and 11: ``general`` is the preset by name, ``general-partN`` the preset as it was
+    before the part (``general_as_of``), spelt out; a fresh seed for each case."""
+    data = tomllib.loads((EXPERIMENT_DIR / f"{prefix}_{kind}.toml").read_text())
     by_name = {s["name"]: s for s in data["strategy"]}
     assert by_name["general"] == {"name": "general", "preset": "general"}
-    old = by_name["general-part9"]
+    old = by_name[f"general-part{part - 1}"]
     assert old["exploration"] == preset("general").exploration
-    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(9)
-    assert data["experiment"]["seed"] == {"classic": 90901, "mazes": 90902, "paper": 90903}[kind]
-
-
-@pytest.mark.parametrize("kind", ["classic", "mazes", "paper"])
-def test_part11_comparisons_set_the_preset_against_part_10s(kind: str) -> None:
-    data = tomllib.loads((EXPERIMENT_DIR / f"horizon_{kind}.toml").read_text())
-    by_name = {s["name"]: s for s in data["strategy"]}
-    assert by_name["general"] == {"name": "general", "preset": "general"}
-    old = by_name["general-part10"]
-    assert old["exploration"] == preset("general").exploration
-    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(10)
-    assert data["experiment"]["seed"] == {"classic": 11101, "mazes": 11102, "paper": 11103}[kind]
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(part - 1)
+    offset = {"classic": 0, "mazes": 1, "paper": 2}[kind]
+    assert data["experiment"]["seed"] == first_seed + offset
 
 
 @pytest.mark.parametrize("kind", ["classic", "mazes"])
