@@ -5,9 +5,11 @@ Table I's split thresholds (mu_th = 0.5, sigma_th^2 = 0.03) are in the maze's re
 ``TreeConfig(threshold_units="scale")`` every constant in reward units is instead a multiple of
 the value unit measured here from the agent's own experience:
 
-    unit = median of |r| over the nonzero rewards seen so far / (1 - gamma),
+    unit = median of |r| over the nonzero rewards seen so far x H,  H = 1 / (1 - gamma),
 
-the value of receiving the typical reward for ever (with gamma = 1, the median itself). On the
+the value of receiving the typical reward for ever (with gamma = 1, the median itself), or with
+``TreeConfig.scale_horizon`` a fixed H, so that the discount can move without moving the
+split test's thresholds (the general preset: gamma 0.999, H = 100). On the
 paper's maze (-0.01 a step, with rarer -1 collisions and one +5 at the goal) the median is 0.01
 and the unit is 1: Table I's values in this unit are Table I's values. On MountainCar, Acrobot
 and CartPole (|r| = 1 a step) the unit is 100. A median ignores the rare large rewards (the
