@@ -12,6 +12,8 @@ import math
 from dataclasses import dataclass
 from typing import Any, Literal
 
+from agent.scale import HORIZON_RANGE
+
 ErrorBuffer = Literal["clear", "window"]
 RangeNormalization = Literal["root", "none"]
 SplitPointRule = Literal["quest", "midpoint"]
@@ -73,9 +75,8 @@ class TreeConfig:
     ``model_bonus``: "reward" (as printed: Table I's values are in the maze's reward units) or
     "scale" (multiples of the value unit the agent measures, the median nonzero |reward| seen so
     far times ``scale_horizon`` (1 / (1 - gamma) unless set), :class:`agent.scale.RewardScale`:
-    1 on the paper's maze, 100 on
-    MountainCar; the variance threshold is a multiple of its square), so that one set of values
-    fits any reward scale."""
+    1 on the paper's maze, 100 on MountainCar; the variance threshold is a multiple of its
+    square), so that one set of values fits any reward scale."""
     scale_rule: ScaleRule = "return_std"
     """The measured unit of ``threshold_units="scale"``: "return_std", the standard deviation of
     every eq. (9) return so far (:class:`agent.scale.ReturnScale`), or "reward_median", the
@@ -83,9 +84,9 @@ class TreeConfig:
     scale_horizon: float | None = None
     """With ``scale_rule="reward_median"``: the horizon H of the unit ``median |r| x H``. None
     (the default) is ``1 / (1 - gamma)``, so the unit follows the discount. A number keeps the
-    split test's unit fixed while ``gamma`` moves: the general preset uses ``gamma`` 0.995 with
+    split test's unit fixed while ``gamma`` moves: the general preset uses ``gamma`` 0.999 with
     H = 100, the unit of ``gamma`` 0.99 (docs/paper-notes.md, "A longer discount"). Steps, so
-    it needs no scale; in [1, 10^6]."""
+    it needs no scale; in :data:`agent.scale.HORIZON_RANGE`."""
     split_min_t: float = 0.0
     """A fourth split condition, a significance gate: split only if, in some dimension, the
     inputs with positive errors and those with negative errors lie apart by at least this Welch
@@ -378,14 +379,15 @@ class TreeConfig:
         _check_choice("threshold_units", self.threshold_units, ("reward", "scale"))
         _check_choice("planning", self.planning, ("none", "sweep"))
         _check_choice("scale_rule", self.scale_rule, ("reward_median", "return_std", "return_iqr"))
-        horizon = self.scale_horizon
+        horizon, (least, most) = self.scale_horizon, HORIZON_RANGE
         if horizon is not None and (
             isinstance(horizon, bool)
             or not isinstance(horizon, int | float)
-            or not 1.0 <= horizon <= 1e6
+            or not least <= horizon <= most
         ):
             raise ValueError(
-                f"TreeConfig.scale_horizon must be None or a number in [1, 1e6], got {horizon!r}"
+                f"TreeConfig.scale_horizon must be None or a number in [{least:g}, {most:,.0f}], "
+                f"got {horizon!r}"
             )
         for name, least in (
             ("model_window", 1),

@@ -33,6 +33,8 @@ from typing import Any
 EXACT_VALUES = 64
 """Distinct reward magnitudes counted exactly before the counts move to log bins."""
 BINS_PER_OCTAVE = 16
+HORIZON_RANGE = (1.0, 1e6)
+"""The horizons H a unit may have (``TreeConfig.scale_horizon``): one step to a million."""
 
 
 class RewardScale:
@@ -44,8 +46,11 @@ class RewardScale:
     def __init__(self, gamma: float, horizon: float | None = None) -> None:
         if not 0.0 <= gamma <= 1.0:
             raise ValueError(f"RewardScale: gamma must be in [0, 1], got {gamma!r}")
-        if horizon is not None and not 1.0 <= horizon <= 1e6:
-            raise ValueError(f"RewardScale: horizon must be in [1, 1e6], got {horizon!r}")
+        least, most = HORIZON_RANGE
+        if horizon is not None and not least <= horizon <= most:
+            raise ValueError(
+                f"RewardScale: horizon must be in [{least:g}, {most:,.0f}], got {horizon!r}"
+            )
         self.gamma = gamma
         self.horizon = horizon
         """``TreeConfig.scale_horizon``: the unit's H, or None for ``1 / (1 - gamma)``."""

@@ -356,8 +356,11 @@ def test_bad_novelty_options_name_the_file_and_field(config: dict[str, Any], def
 @pytest.mark.parametrize(
     ("config", "defect"),
     [
-        ({"scale_horizon": 0.5}, "scale_horizon must be None or a number in [1, 1e6], got 0.5"),
-        ({"scale_horizon": 1e7}, "scale_horizon must be None or a number in [1, 1e6]"),
+        (
+            {"scale_horizon": 0.5},
+            "scale_horizon must be None or a number in [1, 1,000,000], got 0.5",
+        ),
+        ({"scale_horizon": 1e7}, "scale_horizon must be None or a number in [1, 1,000,000]"),
         ({"scale_horizon": float("nan")}, "config.scale_horizon: must be finite, got nan"),
         ({"scale_horizon": True}, "scale_horizon: expected a number or nothing (none), got true"),
         ({"scale_horizon": "100"}, "scale_horizon: expected a number or nothing (none), got '100'"),
