@@ -31,11 +31,13 @@ def observation_bounds(
     if not isinstance(observation_space, spaces.Box):
         raise TypeError(
             "observation_space must be a gymnasium.spaces.Box, "
-            f"got {type(observation_space).__name__} ({observation_space!r})"
+            f"got {type(observation_space).__name__} ({observation_space!r}); "
+            "agent.adapt_env(env) maps it to one"
         )
     if len(observation_space.shape) != 1:
         raise ValueError(
-            f"observation_space must be one-dimensional, got shape {observation_space.shape}"
+            f"observation_space must be one-dimensional, got shape {observation_space.shape}; "
+            "agent.adapt_env(env) flattens it"
         )
     dims = observation_space.shape[0]
     if bounds is None:
@@ -80,8 +82,11 @@ def action_count(action_space: spaces.Space) -> int:
     if not isinstance(action_space, spaces.Discrete):
         raise TypeError(
             f"action_space must be a gymnasium.spaces.Discrete, got {type(action_space).__name__}"
-            f" ({action_space!r})"
+            f" ({action_space!r}); agent.adapt_env(env, action_bins=5) gives a grid of its actions"
         )
     if int(action_space.start) != 0:
-        raise ValueError(f"action_space must start at 0, got start={int(action_space.start)}")
+        raise ValueError(
+            f"action_space must start at 0, got start={int(action_space.start)}; "
+            "agent.adapt_env(env) renumbers it"
+        )
     return int(action_space.n)
