@@ -215,6 +215,12 @@ class TreeConfig:
     None: off. At least 2; needs the model."""
     novelty_terminals: int = 1
     """With ``novelty_cells``: how many terminal epochs end the novel ends (at least 1)."""
+    novelty_episodes: int | None = None
+    """With ``novelty_cells``: the novel ends also end once this many episodes have ended,
+    whatever the count of terminals (beyond the paper; issue 9, part 12). A task whose
+    episodes end only by the time limit (Pendulum) has no terminal epoch, and there ``q_init``
+    after every novel end stays the best value there is (its rewards are all negative), so the
+    agent chases unseen cells for ever. None: no limit (at least 1 otherwise)."""
     decision_steps: int | None = None
     """An epoch of an action that is not a held exploratory run ends after this many steps
     (beyond the paper; None: ``max_epoch_steps``, which then caps held runs only). A greedy
@@ -437,6 +443,13 @@ class TreeConfig:
         limit = self.novelty_terminals
         if isinstance(limit, bool) or not isinstance(limit, int) or limit < 1:
             raise ValueError(f"TreeConfig.novelty_terminals must be an int >= 1, got {limit!r}")
+        episodes = self.novelty_episodes
+        if episodes is not None and (
+            isinstance(episodes, bool) or not isinstance(episodes, int) or episodes < 1
+        ):
+            raise ValueError(
+                f"TreeConfig.novelty_episodes must be an int >= 1 or None, got {episodes!r}"
+            )
         if cells is None:
             return
         if isinstance(cells, bool) or not isinstance(cells, int) or not 2 <= cells <= 1 << 20:

@@ -134,6 +134,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_split_from_terminal": bool,
     "novelty_cells": (int, type(None)),
     "novelty_terminals": int,
+    "novelty_episodes": (int, type(None)),
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
     "decision_steps": (int, type(None)),
@@ -304,7 +305,7 @@ def _env_functions(base: Any) -> dict[str, Any]:
 
 FINGERPRINTS = {
     "SMDPAgent._run_episode": "0c3f07fce917b80a",
-    "SMDPAgent._end_epoch": "15830cac2f2c3651",
+    "SMDPAgent._end_epoch": "63b35a45d3bd9db8",
     "SMDPAgent._end_held_run": "d869d34667c3067f",
     "SMDPAgent._grow": "df200e3fc423ac39",
     "PartitionTree.leaf_of": "ee41c6188076754e",

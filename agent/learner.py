@@ -186,6 +186,10 @@ class SMDPAgent:
             for i in range(episodes):
                 obs, _ = env.reset(seed=reset_seed if i == 0 else None)
                 stats = run_episode(env, obs)
+                if self.episodes_done == self.config.novelty_episodes and self._novelty_open(
+                    self.episodes_done - 1  # open in the episode that just ended
+                ):
+                    self._stop_novelty()
                 history.append(stats)
                 logger.debug("%s", stats)
                 if callback is not None:
@@ -318,7 +322,12 @@ class SMDPAgent:
                 end_leaf,
                 self.novelty is not None and self._novel_end(xs, end_x, terminated),
             )
-            if terminated and self.novelty is not None and model.terminals == cfg.novelty_terminals:
+            if (
+                terminated
+                and model.terminals == cfg.novelty_terminals
+                and self.novelty is not None
+                and (cfg.novelty_episodes is None or self.episodes_done < cfg.novelty_episodes)
+            ):  # (novelty_episodes may have ended the novel ends already)
                 self._stop_novelty()
             value = model.value(leaf, action, self.q)
             if value is not None:
@@ -384,8 +393,7 @@ class SMDPAgent:
         grid = self.novelty
         assert model is not None
         assert grid is not None
-        limit = self.config.novelty_terminals
-        if model.terminals >= limit:
+        if not self._novelty_open():
             return False
         seen = model.seen
         for x in xs:
@@ -393,9 +401,23 @@ class SMDPAgent:
             seen[cell] = seen.get(cell, 0) + 1
         return not terminated and grid.cell(end_x) not in seen
 
+    def _novelty_open(self, episodes: int | None = None) -> bool:
+        """Whether novel ends are counted: ``novelty_cells`` on, fewer than
+        ``novelty_terminals`` terminal epochs, and fewer than ``novelty_episodes`` episodes
+        ended (``episodes``, default :attr:`episodes_done`)."""
+        cfg = self.config
+        ended = self.episodes_done if episodes is None else episodes
+        return (
+            self.novelty is not None
+            and self.model is not None
+            and self.model.terminals < cfg.novelty_terminals
+            and (cfg.novelty_episodes is None or ended < cfg.novelty_episodes)
+        )
+
     def _stop_novelty(self) -> None:
-        """``novelty_terminals`` terminal epochs recorded: every novel end now bootstraps from
-        its end leaf; the values it moves are set and their leaves queued for the sweeps."""
+        """``novelty_terminals`` terminal epochs recorded, or ``novelty_episodes`` episodes
+        ended: every novel end now bootstraps from its end leaf; the values it moves are set
+        and their leaves queued for the sweeps."""
         model = self.model
         assert model is not None
         q = self.q

@@ -13,7 +13,8 @@ a cell no input has been in is stored as a *novel end*: its eq. (8) target is
 the value of an unknown state in R-max (Brafman and Tennenholtz 2002). The sweeps carry that
 optimism back to the leaves that lead there. After ``TreeConfig.novelty_terminals`` terminal
 epochs the agent has found what ends an episode, and every novel end is pointed at its end leaf
-(:meth:`agent.leaf_model.LeafModel.end_novelty`).
+(:meth:`agent.leaf_model.LeafModel.end_novelty`); with ``TreeConfig.novelty_episodes`` also
+once that many episodes have ended, for a task whose episodes never terminate.
 
 Dimensions without finite bounds (a ``Box`` grown from the data) are left out of the cells:
 their range is not known when the count begins.

@@ -145,6 +145,46 @@ def test_novelty_terminals_waits_for_more_terminals(make_corridor: Callable[...,
     assert sum(model.seen.values()) == sum(h.steps for h in history)
 
 
+def test_novelty_episodes_ends_the_novelty_without_a_terminal(
+    make_corridor: Callable[..., Any],
+) -> None:
+    # no goal: episodes end only by the time limit, so no terminal would ever end the novelty
+    env = make_corridor(max_steps=30, goal_radius=0.0)
+    agent = _agent(env, dataclasses.replace(SWEEP, novelty_cells=10, novelty_episodes=2))
+    agent.learn(env, 1, reset_seed=3)
+    model = agent.model
+    assert model is not None
+    assert any(r[4] == -2 for bucket in model._records.values() for r in bucket)
+    agent.learn(env, 1, reset_seed=4)  # the second episode ends it
+    assert model.terminals == 0
+    assert all(r[4] != -2 for bucket in model._records.values() for r in bucket)
+    counted = sum(model.seen.values())
+    assert counted == 60
+    agent.learn(env, 2, reset_seed=5)
+    assert sum(model.seen.values()) == counted  # nothing counted after the limit
+    assert all(r[4] != -2 for bucket in model._records.values() for r in bucket)
+    # without the limit the same runs keep counting
+    open_ended = _agent(env, dataclasses.replace(SWEEP, novelty_cells=10))
+    for seed in (3, 4, 5):
+        open_ended.learn(env, 1 if seed < 5 else 2, reset_seed=seed)
+    assert open_ended.model is not None
+    assert sum(open_ended.model.seen.values()) == 120
+
+
+def test_novelty_episodes_changes_nothing_when_the_terminals_come_first(
+    make_corridor: Callable[..., Any],
+) -> None:
+    env = make_corridor(max_steps=400, noise=0.0)
+    runs = []
+    for limit in (None, 3):
+        agent = _agent(env, dataclasses.replace(SWEEP, novelty_cells=20, novelty_episodes=limit))
+        history = agent.learn(env, 5, reset_seed=0)
+        assert history[0].steps < 400  # the first episode ends at the goal: the terminal
+        runs.append((agent.q, [h.steps for h in history], agent.model))
+    assert runs[0][0] == runs[1][0]
+    assert runs[0][1] == runs[1][1]
+
+
 def test_saved_counts_continue_bit_for_bit(
     tmp_path: Path, make_corridor: Callable[..., Any]
 ) -> None:
@@ -191,6 +231,11 @@ def test_damaged_counts_are_refused(entries: Any) -> None:
         ({"novelty_cells": 1 << 21}, "novelty_cells"),
         ({"novelty_terminals": 0}, "novelty_terminals"),
         ({"novelty_terminals": True}, "novelty_terminals"),
+        ({"novelty_episodes": 0}, "novelty_episodes"),
+        ({"novelty_episodes": -5}, "novelty_episodes"),
+        ({"novelty_episodes": True}, "novelty_episodes"),
+        ({"novelty_episodes": 2.0}, "novelty_episodes"),
+        ({"novelty_episodes": "100"}, "novelty_episodes"),
         ({"novelty_cells": 8, "planning": "none"}, "needs planning"),
     ],
 )
