@@ -25,7 +25,8 @@ can build it by name::
   stored epochs disagree (part 9, "Model-driven splits"), and epochs that end where no input
   has been bootstrap from ``q_init`` until 10 terminal epochs (part 10, "Novel ends"), and a
   discount of 0.999 instead of Table I's 0.99 with the measured unit kept at its 0.99 value
-  (part 11, "A longer discount"). It runs on
+  (part 11, "A longer discount"), and novel ends that also stop after 100 episodes, for a task
+  whose episodes never terminate (part 12, "Tasks without terminal states"). It runs on
   :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop, which that option needs.
 """
 
@@ -93,8 +94,8 @@ PAPER_LITERAL = Preset(
 GENERAL = Preset(
     "general",
     "one set of defaults for every task: measured units, a model over the leaves, sweeping, "
-    "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals, "
-    "gamma 0.999",
+    "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals "
+    "or 100 episodes, gamma 0.999",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -111,6 +112,7 @@ GENERAL = Preset(
         novelty_terminals=10,
         gamma=0.999,
         scale_horizon=100.0,
+        novelty_episodes=100,
     ),
     "adaptive+tabu",
 )
@@ -121,6 +123,7 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     9: {"model_split_epochs": None},
     10: {"novelty_cells": None, "novelty_terminals": 1},
     11: {"gamma": 0.99, "scale_horizon": None},
+    12: {"novelty_episodes": None},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere")."""

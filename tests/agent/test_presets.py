@@ -42,6 +42,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"model_split_epochs"}  # issue 9, part 9
     others |= {"novelty_cells", "novelty_terminals"}  # issue 9, part 10
     others |= {"gamma", "scale_horizon"}  # issue 9, part 11
+    others |= {"novelty_episodes"}  # issue 9, part 12
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -50,6 +51,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.model_split_epochs == 8  # issue 9, part 9 ("Model-driven splits")
     assert (general.novelty_cells, general.novelty_terminals) == (64, 10)  # part 10 ("Novel ends")
     assert (general.gamma, general.scale_horizon) == (0.999, 100.0)  # part 11 ("A longer discount")
+    assert general.novelty_episodes == 100  # part 12 ("Tasks without terminal states")
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -98,12 +100,13 @@ def test_part9_comparisons_set_the_preset_against_part_8s(kind: str) -> None:
 
 @pytest.mark.parametrize("kind", ["classic", "mazes", "paper"])
 @pytest.mark.parametrize(
-    ("prefix", "part", "first_seed"), [("novelty", 10, 90901), ("horizon", 11, 11101)]
+    ("prefix", "part", "first_seed"),
+    [("novelty", 10, 90901), ("horizon", 11, 11101), ("novelty_episodes", 12, 12101)],
 )
 def test_each_part_sets_the_preset_against_the_part_before(
     kind: str, prefix: str, part: int, first_seed: int
 ) -> None:
-    """Parts 10 and 11: ``general`` is the preset by name, ``general-partN`` the preset as it was
+    """Parts 10 to 12: ``general`` is the preset by name, ``general-partN`` the preset as it was
     before the part (``general_as_of``), spelt out; a fresh seed for each case."""
     data = tomllib.loads((EXPERIMENT_DIR / f"{prefix}_{kind}.toml").read_text())
     by_name = {s["name"]: s for s in data["strategy"]}
@@ -127,8 +130,11 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(11) == now
-    assert general_as_of(10) == dataclasses.replace(now, gamma=0.99, scale_horizon=None)
+    assert general_as_of(12) == now
+    assert general_as_of(11) == dataclasses.replace(now, novelty_episodes=None)
+    assert general_as_of(10) == dataclasses.replace(
+        now, gamma=0.99, scale_horizon=None, novelty_episodes=None
+    )
     assert general_as_of(9).novelty_cells is None
     assert general_as_of(9).gamma == 0.99
     assert general_as_of(7).hold_terminals is None
