@@ -3,7 +3,8 @@
 An experiment file has four parts (``docs/experiments.md`` is the full reference)::
 
     [experiment]            # name, seed, runs, episodes, baseline, smoothing_window, ...
-    [env]                   # id, maze, robot, mode, max_episode_steps, [env.params]
+    [env]                   # id, maze, robot, mode, max_episode_steps, observation_bounds,
+                            # action_bins, [env.params]
     [agent]                 # agent config fields shared by every strategy (alpha, gamma, ...)
     [[strategy]]            # one table per compared strategy: name, agent, exploration, ...
 
@@ -88,6 +89,8 @@ MAX_EVAL_EPISODES = 100_000
 """Most greedy evaluation episodes per run."""
 MAX_OBSERVATION_DIMS = 64
 """Most dimensions of ``observation_bounds``."""
+MAX_ACTION_BINS = 64
+"""Most values per dimension of ``action_bins`` (the grid has at most 4,096 actions in all)."""
 SPLITS = ("dev", "test")
 """The splits of a layout suite (``bullet_maze.suites``)."""
 
@@ -133,6 +136,10 @@ class EnvSpec:
     """The box ``(low, high)`` the agent's partition covers, for an observation space with
     infinite bounds (CartPole's velocities); None: the space's own bounds. Observations outside
     the box fall into its edge cells."""
+    action_bins: int | None = None
+    """Values per dimension of a Box action space (``agent.adapt_env``: evenly spaced, both
+    bounds included), from 2 to :data:`MAX_ACTION_BINS`; None: 5. Only for a task with Box
+    actions."""
 
     @property
     def is_maze(self) -> bool:
@@ -920,6 +927,9 @@ class _Reader:
         if constructor is not None:
             self.env_params(params, constructor, env_id, f"{at('params')}.params")
         bounds = self.observation_bounds(table, at("observation_bounds"))
+        bins = None
+        if "action_bins" in table:
+            bins = self.bounded(table, at("action_bins"), "action_bins", 5, 2, MAX_ACTION_BINS)
         if not _is_maze_id(env_id):
             for key in _OWN_KEYS:
                 if key in table:
@@ -927,7 +937,7 @@ class _Reader:
                     raise self.fail(
                         at(key), key, f"only applies to the maze ids, not {env_id!r}{whose}"
                     )
-            return EnvSpec(env_id, None, None, None, cap, params, bounds)
+            return EnvSpec(env_id, None, None, None, cap, params, bounds, bins)
         defaults = {**_signature_defaults(constructor), **registered.kwargs}
         return EnvSpec(
             id=env_id,
@@ -939,6 +949,7 @@ class _Reader:
             max_episode_steps=cap,
             params=params,
             observation_bounds=bounds,
+            action_bins=bins,
         )
 
     def observation_bounds(

@@ -23,12 +23,27 @@ from experiments.config import ConfigError, EnvSpec, ExperimentConfig, StrategyS
 
 
 def make_env(spec: EnvSpec, render_mode: str | None = None, **changes: Any) -> gym.Env:
-    """The run's environment (``gymnasium.make`` with its time limit).
+    """The run's environment (``gymnasium.make`` with its time limit), through
+    :func:`agent.adapt_env`: a task whose observation is not a flat Box or whose actions are
+    not Discrete gets the documented wrappers (``spec.action_bins`` values per Box action
+    dimension); the mazes and classic control pass unchanged.
 
-    ``changes`` replace fields of ``spec`` (``mode="dynamic"``, ``robot="husky"``).
+    ``changes`` replace fields of ``spec`` (``mode="dynamic"``, ``robot="husky"``). A ValueError
+    if ``action_bins`` is set for a task whose actions are not a Box.
     """
+    from agent import adapt_env
+    from agent.task_wrappers import DEFAULT_ACTION_BINS
+
     spec = dataclasses.replace(spec, **changes) if changes else spec
-    return gym.make(spec.id, render_mode=render_mode, **spec.make_kwargs())
+    env = gym.make(spec.id, render_mode=render_mode, **spec.make_kwargs())
+    if spec.action_bins is not None and not isinstance(env.action_space, gym.spaces.Box):
+        space = env.action_space
+        env.close()
+        raise ValueError(
+            f"action_bins = {spec.action_bins} only applies to a task with Box actions; "
+            f"{spec.id} has {space}"
+        )
+    return adapt_env(env, spec.action_bins or DEFAULT_ACTION_BINS)
 
 
 def agent_config(config: ExperimentConfig, strategy: StrategySpec) -> Any:

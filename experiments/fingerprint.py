@@ -161,8 +161,9 @@ def resolved_config(
 
 def _env_settings(env: EnvSpec) -> dict[str, Any]:
     settings = dataclasses.asdict(env)
-    if settings.get("observation_bounds") is None:  # settings added later appear only when
-        settings.pop("observation_bounds", None)  # set: earlier runs keep their fingerprint
+    for key in ("observation_bounds", "action_bins"):  # settings added later appear only
+        if settings.get(key) is None:  # when set: earlier runs keep their fingerprint
+            settings.pop(key, None)
     return settings
 
 
