@@ -72,12 +72,24 @@ def default_references(env_id: str, max_episode_steps: int) -> References | None
     )
 
 
-def random_policy_return(env_id: str, episodes: int, seed: int = 0) -> tuple[float, float]:
+def random_policy_return(
+    env_id: str,
+    episodes: int,
+    seed: int = 0,
+    max_episode_steps: int | None = None,
+    action_bins: int | None = None,
+) -> tuple[float, float]:
     """Mean return and its standard error of ``episodes`` episodes of uniformly random actions
-    (the actions and the first reset drawn from generators seeded with ``seed``)."""
+    (the actions and the first reset drawn from generators seeded with ``seed``), at the id's
+    registered time limit or ``max_episode_steps``, through ``agent.adapt_env`` (a Box action
+    is a grid of ``action_bins`` values a dimension, 5 by default), as the harness runs it."""
     import gymnasium as gym
 
-    env = gym.make(env_id)
+    from agent import adapt_env
+    from agent.task_wrappers import DEFAULT_ACTION_BINS
+
+    made = gym.make(env_id, max_episode_steps=max_episode_steps)
+    env = adapt_env(made, action_bins or DEFAULT_ACTION_BINS)
     try:
         rng = np.random.default_rng(seed)
         returns = []
