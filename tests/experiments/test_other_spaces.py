@@ -72,3 +72,14 @@ def test_an_experiment_runs_on_adapted_tasks_end_to_end(tmp_path: Path) -> None:
     assert "Pendulum-v1" in report
     assert "FrozenLake-v1" in report
     assert len(list((out / "runs").rglob("*.eval.csv"))) == 2
+
+
+def test_random_references_run_as_the_harness_runs_the_task() -> None:
+    from experiments.references import random_policy_return
+
+    mean, _ = random_policy_return("Pendulum-v1", 2, seed=0)  # a Box action: the 5-value grid
+    assert -16.3 * 200 <= mean < 0.0
+    # CliffWalking registers no limit; at 10 steps each step costs 1, or 100 off the cliff
+    mean, error = random_policy_return("CliffWalking-v1", 3, seed=0, max_episode_steps=10)
+    assert -1000.0 <= mean <= -10.0
+    assert error >= 0.0
