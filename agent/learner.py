@@ -186,10 +186,10 @@ class SMDPAgent:
             for i in range(episodes):
                 obs, _ = env.reset(seed=reset_seed if i == 0 else None)
                 stats = run_episode(env, obs)
-                if self.episodes_done == self.config.novelty_episodes and self._novelty_open(
-                    self.episodes_done - 1  # open in the episode that just ended
-                ):
-                    self._stop_novelty()
+                if self.episodes_done == self.config.novelty_episodes:
+                    for member in getattr(self, "members", [self]):  # TreeEnsembleAgent's trees
+                        if member._novelty_open(member.episodes_done - 1):  # open until now
+                            member._stop_novelty()
                 history.append(stats)
                 logger.debug("%s", stats)
                 if callback is not None:

@@ -286,3 +286,19 @@ def test_damaged_counts_in_a_file_are_refused_by_name(
     with pytest.raises(ValueError, match="seen cell") as error:
         TreeAgent.load(bad)
     assert str(bad) in str(error.value)
+
+
+def test_novelty_episodes_ends_every_trees_novelty(make_corridor: Callable[..., Any]) -> None:
+    env = make_corridor(max_steps=30, goal_radius=0.0)
+    config = dataclasses.replace(
+        SWEEP, novelty_cells=10, novelty_episodes=2, ensemble_trees=3, presplit_each_dimension=True
+    )
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, "epsilon-greedy", 0, config
+    )
+    agent.learn(env, 1, reset_seed=0)
+    members = agent.members  # type: ignore[attr-defined]
+    assert len(members) == 3
+    assert all(_novel_ends(m.model) > 0 for m in members)
+    agent.learn(env, 1, reset_seed=1)
+    assert [_novel_ends(m.model) for m in members] == [0, 0, 0]
