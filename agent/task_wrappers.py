@@ -15,8 +15,9 @@ continuous action (Pendulum's torque) is brought to them by a documented rule, n
   ``log2(n)`` splits.
 * :class:`DiscreteActions`: ``Discrete(m)`` over a grid of the task's actions. A ``Box`` with
   finite bounds gets ``bins`` evenly spaced values per dimension, both bounds included (with
-  an odd ``bins`` the middle one is the centre, 0 for a symmetric torque), and the grid is
-  the product over dimensions, the first dimension varying slowest; ``MultiDiscrete`` and
+  an odd ``bins`` the middle one is the centre, 0 for a symmetric torque; a dimension whose
+  bounds are equal has its one value), and the grid is the product over dimensions, the first
+  dimension varying slowest; ``MultiDiscrete`` and
   ``MultiBinary`` become the product of their choices. At most :data:`MAX_ACTIONS` actions.
 * :func:`adapt_env` applies whichever of the two a task needs, and nothing to a task that
   already has a flat Box and a Discrete space (the mazes, classic control), so it is safe to
@@ -154,8 +155,14 @@ class DiscreteActions(gym.ActionWrapper[Any, int, Any], RecordConstructorArgs):
                     f"DiscreteActions: the action space {space!r} is unbounded "
                     f"(low={low.tolist()}, high={high.tolist()}); give it finite bounds first"
                 )
+            if low.size == 0:
+                raise ValueError(f"DiscreteActions: the action space {space!r} has no entries")
             counts = _bins_per_dimension(bins, low.size)
-            axes = [np.linspace(lo, hi, n) for lo, hi, n in zip(low, high, counts, strict=True)]
+            # a dimension fixed by its bounds (low == high) has its one value, not repeats
+            axes = [
+                np.linspace(lo, hi, n if lo < hi else 1)
+                for lo, hi, n in zip(low, high, counts, strict=True)
+            ]
             shape, dtype = space.shape, space.dtype
             grid = [
                 np.asarray(point, dtype=dtype).reshape(shape)

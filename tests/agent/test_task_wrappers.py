@@ -82,6 +82,12 @@ def test_two_dimensional_grid_varies_the_first_dimension_slowest() -> None:
     assert [a.tolist() for a in env.actions] == expected
 
 
+def test_a_dimension_fixed_by_its_bounds_has_one_value() -> None:
+    box = spaces.Box(np.array([-1.0, 0.5]), np.array([1.0, 0.5]))
+    env = DiscreteActions(SpaceEnv(spaces.Box(0, 1, (1,)), box), bins=3)
+    assert [a.tolist() for a in env.actions] == [[-1.0, 0.5], [0.0, 0.5], [1.0, 0.5]]
+
+
 def test_multidiscrete_and_multibinary_actions_are_their_products() -> None:
     env = DiscreteActions(SpaceEnv(spaces.Box(0, 1, (1,)), spaces.MultiDiscrete([2, 3])))
     assert [a.tolist() for a in env.actions] == [[0, 0], [0, 1], [0, 2], [1, 0], [1, 1], [1, 2]]
@@ -160,6 +166,7 @@ def test_unsupported_observation_spaces_are_named(space: spaces.Space, message: 
         (spaces.Box(-np.inf, 1.0, (1,)), 5, ValueError, r"unbounded"),
         (spaces.MultiBinary(13), 5, ValueError, r"8,192 actions"),
         (spaces.Text(4), 5, TypeError, r"action space is a Text"),
+        (spaces.Box(0.0, 1.0, (0,)), 5, ValueError, r"has no entries"),
     ],
 )
 def test_bad_action_spaces_and_bins_are_named(
