@@ -1,0 +1,64 @@
+"""examples/any_task.py: the general agent on a task with other spaces, and its command line's
+errors (one line, exit code 2, no traceback)."""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "any_task.py"
+
+
+def _module() -> Any:
+    spec = importlib.util.spec_from_file_location("any_task_example", EXAMPLE)
+    assert spec is not None
+    assert spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # dataclasses look their module up while the class is made
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_it_learns_cliff_walking_through_the_index() -> None:
+    result = _module().train("CliffWalking-v1", episodes=100, seed=0, eval_episodes=2)
+    assert len(result.history) == 100
+    assert result.eval_returns == [-17.0, -17.0]  # the safe path, without a fall
+
+
+def test_a_box_action_task_runs_on_the_grid(capsys: pytest.CaptureFixture[str]) -> None:
+    assert _module().main(["Pendulum-v1", "--episodes", "2", "--action-bins", "3"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("Pendulum-v1: 2 episodes")
+    assert "greedy return over 20 episodes" in out
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["NoSuchTask-v9"], "NoSuchTask-v9: Environment `NoSuchTask` doesn't exist"),
+        (["Pendulum-v1", "--action-bins", "1"], "every bin count must be an int >= 2, got 1"),
+        (["Pendulum-v1", "--action-bins", "5000"], "5,000 actions, more than 4,096"),
+        (["CliffWalking-v1", "--action-bins", "3"], "only applies to a task with Box actions"),
+    ],
+)
+def test_bad_arguments_are_one_line_errors(
+    argv: list[str], message: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert _module().main([*argv, "--episodes", "1"]) == 2
+    err = capsys.readouterr().err
+    assert message in err
+    assert "Traceback" not in err
+    assert err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    "argv", [["Pendulum-v1", "--episodes", "0"], ["Pendulum-v1", "--seed", "x"]]
+)
+def test_bad_numbers_are_refused_by_argparse(argv: list[str]) -> None:
+    with pytest.raises(SystemExit) as stop:
+        _module().main(argv)
+    assert stop.value.code == 2
