@@ -22,6 +22,7 @@ import gymnasium as gym
 import numpy as np
 
 from agent import EpisodeStats, SMDPAgent, adapt_env, preset
+from experiments.evaluation import greedy_episode
 
 
 @dataclass(frozen=True)
@@ -53,15 +54,7 @@ def train(
     env = adapt_env(made, 5 if action_bins is None else action_bins)
     agent = preset("general").agent(env.observation_space, env.action_space, seed=seed)
     history = agent.learn(env, episodes, reset_seed=seed)
-    returns = []
-    for i in range(eval_episodes):
-        obs, _ = env.reset(seed=10**6 + i)
-        total, done = 0.0, False
-        while not done:
-            obs, reward, terminated, truncated, _ = env.step(agent.predict(obs))
-            total += float(reward)
-            done = terminated or truncated
-        returns.append(total)
+    returns = [greedy_episode(env, agent, 10**6 + i).episode_return for i in range(eval_episodes)]
     env.close()
     return TaskResult(agent, history, returns)
 

@@ -3,34 +3,28 @@ errors (one line, exit code 2, no traceback)."""
 
 from __future__ import annotations
 
-import importlib.util
-import sys
-from pathlib import Path
-from typing import Any
+from collections.abc import Callable
+from types import ModuleType
 
 import pytest
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "any_task.py"
+Load = Callable[[str], ModuleType]
 
 
-def _module() -> Any:
-    spec = importlib.util.spec_from_file_location("any_task_example", EXAMPLE)
-    assert spec is not None
-    assert spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # dataclasses look their module up while the class is made
-    spec.loader.exec_module(module)
-    return module
-
-
-def test_it_learns_cliff_walking_through_the_index() -> None:
-    result = _module().train("CliffWalking-v1", episodes=100, seed=0, eval_episodes=2)
+def test_it_learns_cliff_walking_through_the_index(load_example: Load) -> None:
+    result = load_example("any_task").train(
+        "CliffWalking-v1", episodes=100, seed=0, eval_episodes=2
+    )
     assert len(result.history) == 100
     assert result.eval_returns == [-17.0, -17.0]  # the safe path, without a fall
 
 
-def test_a_box_action_task_runs_on_the_grid(capsys: pytest.CaptureFixture[str]) -> None:
-    assert _module().main(["Pendulum-v1", "--episodes", "2", "--action-bins", "3"]) == 0
+def test_a_box_action_task_runs_on_the_grid(
+    load_example: Load, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert (
+        load_example("any_task").main(["Pendulum-v1", "--episodes", "2", "--action-bins", "3"]) == 0
+    )
     out = capsys.readouterr().out
     assert out.startswith("Pendulum-v1: 2 episodes")
     assert "greedy return over 20 episodes" in out
@@ -46,9 +40,9 @@ def test_a_box_action_task_runs_on_the_grid(capsys: pytest.CaptureFixture[str]) 
     ],
 )
 def test_bad_arguments_are_one_line_errors(
-    argv: list[str], message: str, capsys: pytest.CaptureFixture[str]
+    argv: list[str], message: str, load_example: Load, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    assert _module().main([*argv, "--episodes", "1"]) == 2
+    assert load_example("any_task").main([*argv, "--episodes", "1"]) == 2
     err = capsys.readouterr().err
     assert message in err
     assert "Traceback" not in err
@@ -58,7 +52,7 @@ def test_bad_arguments_are_one_line_errors(
 @pytest.mark.parametrize(
     "argv", [["Pendulum-v1", "--episodes", "0"], ["Pendulum-v1", "--seed", "x"]]
 )
-def test_bad_numbers_are_refused_by_argparse(argv: list[str]) -> None:
+def test_bad_numbers_are_refused_by_argparse(argv: list[str], load_example: Load) -> None:
     with pytest.raises(SystemExit) as stop:
-        _module().main(argv)
+        load_example("any_task").main(argv)
     assert stop.value.code == 2
