@@ -220,17 +220,25 @@ def needs_discrete_actions(space: spaces.Space) -> bool:
 
 
 def adapt_env(
-    env: gym.Env[Any, Any], action_bins: int | Sequence[int] = DEFAULT_ACTION_BINS
+    env: gym.Env[Any, Any], action_bins: int | Sequence[int] | None = None
 ) -> gym.Env[Any, Any]:
     """``env`` with :class:`BoxObservation` and :class:`DiscreteActions` where its spaces need
-    them (``action_bins`` per Box action dimension), else ``env`` itself."""
+    them (``action_bins`` per Box action dimension, None: :data:`DEFAULT_ACTION_BINS`), else
+    ``env`` itself. ``action_bins`` given for a task whose actions are not a Box is a
+    ValueError naming the task: it would be ignored."""
+    space = env.action_space
+    if action_bins is not None and not isinstance(space, spaces.Box):
+        task = env.spec.id if env.spec is not None else type(env.unwrapped).__name__
+        raise ValueError(
+            f"action_bins = {action_bins!r} only applies to a task with Box actions; "
+            f"{task} has {space}"
+        )
     if needs_box_observation(env.observation_space):
         env = BoxObservation(env)
-    space = env.action_space
     if isinstance(space, spaces.Discrete) and int(space.start) != 0:
         env = _ShiftedDiscrete(env)
     elif needs_discrete_actions(space):
-        env = DiscreteActions(env, action_bins)
+        env = DiscreteActions(env, DEFAULT_ACTION_BINS if action_bins is None else action_bins)
     return env
 
 

@@ -43,15 +43,9 @@ def train(
     eval_episodes: int = 20,
 ) -> TaskResult:
     """Train ``preset("general")`` on ``task`` through ``adapt_env`` (``action_bins`` values a
-    Box action dimension, default 5; a ValueError for a task whose actions are not a Box); the
-    first reset is seeded with ``seed`` and evaluation episode i with ``10**6 + i``."""
-    made = gym.make(task)
-    if action_bins is not None and not isinstance(made.action_space, gym.spaces.Box):
-        made.close()
-        raise ValueError(
-            f"--action-bins only applies to a task with Box actions; {task} has {made.action_space}"
-        )
-    env = adapt_env(made, 5 if action_bins is None else action_bins)
+    Box action dimension, default 5; refused by ``adapt_env`` for other actions); the first
+    reset is seeded with ``seed`` and evaluation episode i with ``10**6 + i``."""
+    env = adapt_env(gym.make(task), action_bins)
     agent = preset("general").agent(env.observation_space, env.action_space, seed=seed)
     history = agent.learn(env, episodes, reset_seed=seed)
     returns = [greedy_episode(env, agent, 10**6 + i).episode_return for i in range(eval_episodes)]

@@ -32,18 +32,14 @@ def make_env(spec: EnvSpec, render_mode: str | None = None, **changes: Any) -> g
     if ``action_bins`` is set for a task whose actions are not a Box.
     """
     from agent import adapt_env
-    from agent.task_wrappers import DEFAULT_ACTION_BINS
 
     spec = dataclasses.replace(spec, **changes) if changes else spec
     env = gym.make(spec.id, render_mode=render_mode, **spec.make_kwargs())
-    if spec.action_bins is not None and not isinstance(env.action_space, gym.spaces.Box):
-        space = env.action_space
+    try:
+        return adapt_env(env, spec.action_bins)
+    except (TypeError, ValueError):
         env.close()
-        raise ValueError(
-            f"action_bins = {spec.action_bins} only applies to a task with Box actions; "
-            f"{spec.id} has {space}"
-        )
-    return adapt_env(env, spec.action_bins or DEFAULT_ACTION_BINS)
+        raise
 
 
 def agent_config(config: ExperimentConfig, strategy: StrategySpec) -> Any:

@@ -86,10 +86,8 @@ def random_policy_return(
     import gymnasium as gym
 
     from agent import adapt_env
-    from agent.task_wrappers import DEFAULT_ACTION_BINS
 
-    made = gym.make(env_id, max_episode_steps=max_episode_steps)
-    env = adapt_env(made, action_bins or DEFAULT_ACTION_BINS)
+    env = adapt_env(gym.make(env_id, max_episode_steps=max_episode_steps), action_bins)
     try:
         rng = np.random.default_rng(seed)
         returns = []

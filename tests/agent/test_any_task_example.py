@@ -36,7 +36,10 @@ def test_a_box_action_task_runs_on_the_grid(
         (["NoSuchTask-v9"], "NoSuchTask-v9: Environment `NoSuchTask` doesn't exist"),
         (["Pendulum-v1", "--action-bins", "1"], "every bin count must be an int >= 2, got 1"),
         (["Pendulum-v1", "--action-bins", "5000"], "5,000 actions, more than 4,096"),
-        (["CliffWalking-v1", "--action-bins", "3"], "only applies to a task with Box actions"),
+        (
+            ["CliffWalking-v1", "--action-bins", "3"],
+            "action_bins = 3 only applies to a task with Box actions",
+        ),
     ],
 )
 def test_bad_arguments_are_one_line_errors(

@@ -95,6 +95,14 @@ def test_multidiscrete_and_multibinary_actions_are_their_products() -> None:
     assert [a.tolist() for a in env.actions] == [[0, 0], [0, 1], [1, 0], [1, 1]]
 
 
+def test_action_bins_for_actions_that_are_not_a_box_is_refused_naming_the_task() -> None:
+    with pytest.raises(ValueError, match=r"action_bins = 3 only applies .* CliffWalking-v1 has"):
+        adapt_env(gym.make("CliffWalking-v1"), 3)
+    with pytest.raises(ValueError, match=r"action_bins = 2 only applies .* SpaceEnv has"):
+        adapt_env(SpaceEnv(spaces.Box(0, 1, (1,)), spaces.MultiBinary(2)), 2)
+    assert adapt_env(gym.make("Pendulum-v1"), 3).action_space == spaces.Discrete(3)
+
+
 def test_adapt_env_leaves_a_fitting_task_alone_and_renumbers_a_shifted_discrete() -> None:
     fitting = SpaceEnv(spaces.Box(0, 1, (2,)), spaces.Discrete(3))
     assert adapt_env(fitting) is fitting
