@@ -756,11 +756,21 @@ def dumps(config: ExperimentConfig) -> str:
     return tomli_w.dumps(to_dict(config))
 
 
+REPORT_SETTINGS: dict[str, tuple[str, ...]] = {
+    "experiment": ("smoothing_window", "final_window", "convergence_tolerance", "baseline"),
+    "task": ("random_return", "solved_return"),
+}
+"""Keys that change only the report, never a run (no run's fingerprint holds them): a folder's
+runs stay valid when they change, and its recorded ``config.toml`` follows the report."""
+
+
 def same_experiment(a: ExperimentConfig, b: ExperimentConfig) -> list[str]:
-    """Keys whose values differ between two experiments, ignoring the number of runs.
+    """Keys whose values differ between two experiments, ignoring the number of runs and the
+    description: ``section.key``, and ``task[name].key`` for a task present in both.
 
     Runs may be added to a results folder (run i's seed does not depend on how many runs
-    there are); anything else changes the results, so a folder must not mix them.
+    there are); a difference in anything else but :data:`REPORT_SETTINGS` changes the
+    results, so a folder must not mix them (:func:`run_differences`).
     """
     left, right = to_dict(a), to_dict(b)
     left["experiment"].pop("runs"), right["experiment"].pop("runs")
@@ -772,12 +782,38 @@ def same_experiment(a: ExperimentConfig, b: ExperimentConfig) -> list[str]:
         if lv == rv:
             continue
         if isinstance(lv, dict) and isinstance(rv, dict):
-            differences += [
-                f"{section}.{k}" for k in sorted(set(lv) | set(rv)) if lv.get(k) != rv.get(k)
-            ]
+            differences += _dict_differences(section, lv, rv)
+        elif section == "task" and _same_task_names(lv, rv):
+            for lt, rt in zip(lv, rv, strict=True):
+                differences += _dict_differences(f"task[{lt['name']}]", lt, rt)
         else:
             differences.append(section)
     return differences
+
+
+def run_differences(differences: list[str]) -> list[str]:
+    """The differences of :func:`same_experiment` that change runs (all but the report's)."""
+    return [d for d in differences if not _is_report_setting(d)]
+
+
+def _is_report_setting(difference: str) -> bool:
+    section, _, key = difference.rpartition(".")
+    return key in REPORT_SETTINGS.get(section.split("[", 1)[0], ())
+
+
+def _dict_differences(where: str, left: dict[str, Any], right: dict[str, Any]) -> list[str]:
+    keys = sorted(set(left) | set(right))
+    return [f"{where}.{k}" for k in keys if left.get(k) != right.get(k)]
+
+
+def _same_task_names(left: Any, right: Any) -> bool:
+    if not (isinstance(left, list) and isinstance(right, list)) or len(left) != len(right):
+        return False
+    pairs = zip(left, right, strict=True)
+    return all(
+        isinstance(x, dict) and isinstance(y, dict) and x.get("name") == y.get("name")
+        for x, y in pairs
+    )
 
 
 class _Reader:

@@ -327,6 +327,7 @@ class Experiment:
 
         if not self.out.is_dir():
             raise ConfigError(f"{self.out}: no such results folder (nothing has run)")
+        runner.record_report_config(self.config, self.out, self.allowed_env_ids)
         write = write_task_report if self.config.tasks else write_report
         try:
             return write(

@@ -13,11 +13,14 @@ cut, edited or unverifiable is reported by name and recomputed; a run computed f
 inputs (an edited maze, another robot file, other settings) makes the experiment refuse, by
 name, rather than mix; a run whose only difference is the code version is refused too unless
 the caller accepts code changes (``--accept-code-change``, recorded in the report). A folder
-that holds a different experiment (anything but the number of runs changed) is refused.
+that holds a different experiment (anything but the number of runs or the report's settings
+changed) is refused; a change of report settings alone is recorded in ``config.toml``, by a run
+or by a report (:func:`record_config`), so the file always describes the folder's report.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass
@@ -156,17 +159,7 @@ def prepare_folder(
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as error:
         raise ConfigError(f"option --out: cannot create {out_dir} ({error.strerror})") from None
-    recorded = out_dir / CONFIG_FILE
-    if recorded.exists():
-        previous = config_module.load_config(recorded, allowed_env_ids)
-        differences = config_module.same_experiment(previous, config)
-        if differences:
-            raise ConfigError(
-                f"{out_dir} holds results of a different experiment (differs in "
-                f"{', '.join(differences)}); choose another --out or delete the folder"
-            )
-        config = config if config.runs >= previous.runs else previous
-    store.atomic_write_text(recorded, config_module.dumps(config))
+    record_config(config, out_dir, allowed_env_ids)
     store.remove_stale_temporaries(out_dir / RUN_DIR, nested=True)
     store.remove_stale_temporaries(out_dir)
 
@@ -238,6 +231,49 @@ def run_experiment(
     except OSError as error:
         if error.filename is None or not Path(error.filename).is_relative_to(out_dir):
             raise
+        raise ConfigError(f"{out_dir}: cannot write ({error.strerror})") from None
+
+
+def record_config(
+    config: ExperimentConfig, out_dir: Path, allowed_env_ids: Collection[str] = ()
+) -> None:
+    """Write ``config`` as the folder's ``config.toml``, refusing one that records a different
+    experiment (a difference that changes runs, :func:`config_module.run_differences`). A
+    change of report settings alone is recorded, so the file always describes the report; the
+    recorded number of runs never shrinks. Call it holding the folder's lock."""
+    recorded = out_dir / CONFIG_FILE
+    if recorded.exists():
+        previous = config_module.load_config(recorded, allowed_env_ids)
+        differences = config_module.run_differences(config_module.same_experiment(previous, config))
+        if differences:
+            raise ConfigError(
+                f"{out_dir} holds results of a different experiment (differs in "
+                f"{', '.join(differences)}); choose another --out or delete the folder"
+            )
+        if config.runs < previous.runs:
+            config = dataclasses.replace(config, runs=previous.runs)
+    store.atomic_write_text(recorded, config_module.dumps(config))
+
+
+def record_report_config(
+    config: ExperimentConfig, out_dir: Path, allowed_env_ids: Collection[str] = ()
+) -> None:
+    """:func:`record_config` under the folder's lock, for a report written without a run
+    (``--report-only``): the report's settings become the recorded ones, and a file that
+    describes other runs is refused by name. Where nothing but the number of runs differs,
+    nothing is written and no lock is taken, so a report can be read while the runs go on."""
+    check_out_dir(out_dir)
+    recorded = out_dir / CONFIG_FILE
+    if recorded.exists():
+        previous = config_module.load_config(recorded, allowed_env_ids)
+        if not config_module.same_experiment(previous, config):
+            return
+    try:
+        with FolderLock(out_dir):
+            record_config(config, out_dir, allowed_env_ids)
+    except FolderBusyError as error:
+        raise ConfigError(str(error)) from None
+    except OSError as error:
         raise ConfigError(f"{out_dir}: cannot write ({error.strerror})") from None
 
 

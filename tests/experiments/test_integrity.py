@@ -7,6 +7,7 @@ is refused and deletes nothing.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import subprocess
@@ -335,3 +336,88 @@ def test_inputs_that_change_while_running_are_not_stored(small_config, standins,
     with pytest.raises(ConfigError, match=r"inputs changed while the experiment ran \(layout\)"):
         runner.run_experiment(small_config, out, SerialBackend(), lying_task)
     assert not list((out / "runs").glob("*.json"))
+
+
+# --- a folder's config.toml always describes its report ------------------------------------
+
+
+def _report_only(config, out: Path, standins) -> None:
+    from experiments.jobs import Experiment
+
+    Experiment(config, out, task=standins.fake_run).report()
+
+
+def test_report_only_records_changed_report_settings(small_data, standins, tmp_path: Path):
+    """Changing a report setting (final_window) and reporting again once left the folder's
+    config.toml at the old value beside a report computed with the new one."""
+    out = tmp_path / "out"
+    config = parse_config(small_data, source="small.toml")
+    runner.run_experiment(config, out, SerialBackend(), standins.fake_run)
+    runs_before = {p.name: p.read_bytes() for p in (out / "runs").iterdir()}
+    _report_only(config, out, standins)
+    assert "of the last 20 episodes" in (out / "report.md").read_text()
+    small_data["experiment"]["final_window"] = 30
+    wider = parse_config(small_data, source="small.toml")
+    _report_only(wider, out, standins)
+    recorded = config_module.load_config(out / runner.CONFIG_FILE)
+    assert recorded.final_window == 30
+    assert "of the last 30 episodes" in (out / "report.md").read_text()
+    assert {p.name: p.read_bytes() for p in (out / "runs").iterdir()} == runs_before
+    # a run with the new file finds every run finished: nothing is recomputed or refused
+    assert runner.run_experiment(wider, out, SerialBackend(), standins.fake_run) == []
+
+
+def test_report_only_refuses_a_file_that_changes_runs(small_data, standins, tmp_path: Path):
+    out = tmp_path / "out"
+    runner.run_experiment(
+        parse_config(small_data, source="small.toml"), out, SerialBackend(), standins.fake_run
+    )
+    recorded_before = (out / runner.CONFIG_FILE).read_bytes()
+    small_data["experiment"]["seed"] += 1
+    small_data["experiment"]["final_window"] = 30
+    other = parse_config(small_data, source="small.toml")
+    with pytest.raises(ConfigError, match=r"different experiment \(differs in experiment\.seed\)"):
+        _report_only(other, out, standins)
+    assert (out / runner.CONFIG_FILE).read_bytes() == recorded_before
+    assert not (out / "report.md").exists()
+
+
+def test_a_run_with_changed_report_settings_is_recorded(small_data, standins, tmp_path: Path):
+    out = tmp_path / "out"
+    runner.run_experiment(
+        parse_config(small_data, source="small.toml"), out, SerialBackend(), standins.fake_run
+    )
+    small_data["experiment"]["smoothing_window"] = 15
+    small_data["experiment"]["convergence_tolerance"] = 0.2
+    changed = parse_config(small_data, source="small.toml")
+    assert runner.run_experiment(changed, out, SerialBackend(), standins.fake_run) == []
+    recorded = config_module.load_config(out / runner.CONFIG_FILE)
+    assert (recorded.smoothing_window, recorded.convergence_tolerance) == (15, 0.2)
+
+
+def test_report_only_on_an_unchanged_file_needs_no_lock(small_config, standins, tmp_path: Path):
+    """A report can be read while another process holds the folder (a run going on)."""
+    out = tmp_path / "out"
+    runner.run_experiment(small_config, out, SerialBackend(), standins.fake_run)
+    with FolderLock(out):
+        _report_only(small_config, out, standins)
+        assert (out / "report.md").exists()
+        changed = dataclasses.replace(small_config, final_window=30)
+        with pytest.raises(ConfigError, match="being written by another experiment"):
+            _report_only(changed, out, standins)
+
+
+def test_task_report_settings_are_told_apart_from_run_settings():
+    from experiments.config import run_differences, same_experiment
+
+    config = config_module.load_config("other_tasks")
+    first = config.tasks[0]
+    moved = dataclasses.replace(first, random_return=first.random_return + 1.0)
+    changed = dataclasses.replace(config, tasks=(moved, *config.tasks[1:]))
+    found = same_experiment(config, changed)
+    assert found == [f"task[{first.name}].random_return"]
+    assert run_differences(found) == []
+    capped = dataclasses.replace(first, env=dataclasses.replace(first.env, max_episode_steps=50))
+    assert run_differences(
+        same_experiment(config, dataclasses.replace(config, tasks=(capped, *config.tasks[1:])))
+    ) == [f"task[{first.name}].max_episode_steps"]
