@@ -783,7 +783,10 @@ def same_experiment(a: ExperimentConfig, b: ExperimentConfig) -> list[str]:
             continue
         if isinstance(lv, dict) and isinstance(rv, dict):
             differences += _dict_differences(section, lv, rv)
-        elif section == "task" and _same_task_names(lv, rv):
+        elif section == "task" and isinstance(lv, list) and isinstance(rv, list):
+            if not _same_task_names(lv, rv):
+                differences.append(section)
+                continue
             for lt, rt in zip(lv, rv, strict=True):
                 differences += _dict_differences(f"task[{lt['name']}]", lt, rt)
         else:
@@ -806,8 +809,8 @@ def _dict_differences(where: str, left: dict[str, Any], right: dict[str, Any]) -
     return [f"{where}.{k}" for k in keys if left.get(k) != right.get(k)]
 
 
-def _same_task_names(left: Any, right: Any) -> bool:
-    if not (isinstance(left, list) and isinstance(right, list)) or len(left) != len(right):
+def _same_task_names(left: list[Any], right: list[Any]) -> bool:
+    if len(left) != len(right):
         return False
     pairs = zip(left, right, strict=True)
     return all(
