@@ -261,13 +261,15 @@ def record_report_config(
     """:func:`record_config` under the folder's lock, for a report written without a run
     (``--report-only``): the report's settings become the recorded ones, and a file that
     describes other runs is refused by name. Where nothing but the number of runs differs,
-    nothing is written and no lock is taken, so a report can be read while the runs go on."""
+    or where no run has recorded a ``config.toml`` yet, nothing is written and no lock is taken,
+    so a report can be read while the runs go on."""
     check_out_dir(out_dir)
     recorded = out_dir / CONFIG_FILE
-    if recorded.exists():
-        previous = config_module.load_config(recorded, allowed_env_ids)
-        if not config_module.same_experiment(previous, config):
-            return
+    if not recorded.exists():
+        return  # no run has recorded an experiment here: nothing to describe
+    previous = config_module.load_config(recorded, allowed_env_ids)
+    if not config_module.same_experiment(previous, config):
+        return
     try:
         with FolderLock(out_dir):
             record_config(config, out_dir, allowed_env_ids)

@@ -360,3 +360,25 @@ def test_the_runner_is_entered_once_per_experiment_command(
     argv = ["experiment", str(path), "--backend", "serial", "--no-progress"]
     assert run.main([*argv, "--out", str(tmp_path / "out")]) == 0
     assert calls == ["run_experiment"]
+
+
+def test_report_only_of_a_file_that_changes_runs_is_refused(tmp_path: Path, capsys):
+    """The folder's config.toml describes its report: a file with another seed is refused by
+    --report-only as by a run, naming the key; a changed report setting is recorded."""
+    out = tmp_path / "out"
+    path = _write(tmp_path, "f.toml", SMALL_FILE)
+    assert run.main(["experiment", str(path), "--out", str(out), "--workers", "1"]) == 0
+    capsys.readouterr()
+    reseeded = _write(tmp_path, "g.toml", SMALL_FILE.replace("runs = 1", "runs = 1\nseed = 5"))
+    error = _fails(["experiment", str(reseeded), "--out", str(out), "--report-only"], capsys)
+    assert "differs in experiment.seed" in error
+    windowed = _write(
+        tmp_path, "h.toml", SMALL_FILE.replace("runs = 1", "runs = 1\nfinal_window = 1")
+    )
+    assert run.main(["experiment", str(windowed), "--out", str(out), "--report-only"]) == 0
+    assert "final_window = 1" in (out / "config.toml").read_text()
+
+
+def test_report_only_writes_no_config_into_an_empty_folder(tmp_path: Path, capsys):
+    _fails(["experiment", "quick", "--report-only", "--out", str(tmp_path)], capsys)
+    assert not (tmp_path / "config.toml").exists()
