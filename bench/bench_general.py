@@ -73,18 +73,6 @@ def compare(label: str, old: TreeConfig, new: TreeConfig, rounds: int, episodes:
         )
 
 
-def compare_main(description: str, label: str, old: TreeConfig, new: TreeConfig) -> None:
-    """The command line of a preset-against-variant bench: ``--rounds`` (3) and ``--episodes``
-    (300), then :func:`compare`."""
-    parser = argparse.ArgumentParser(description=description)
-    parser.add_argument("--rounds", type=int, default=3)
-    parser.add_argument("--episodes", type=int, default=300)
-    args = parser.parse_args()
-    if args.rounds < 1 or args.episodes < 1:
-        parser.error("--rounds and --episodes must be at least 1")
-    compare(label, old, new, args.rounds, args.episodes)
-
-
 def cpu_per_kilostep(task: str, blend: bool, episodes: int, seed: int) -> float:
     """CPU seconds per 1,000 steps of ``episodes`` learning episodes of the general preset
     (``blend=True``: with the recent, bounded lambda blend)."""

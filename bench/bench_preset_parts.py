@@ -1,0 +1,67 @@
+"""Cost of each change issue 9 made to the general preset from part 8 on, one part at a time.
+
+For part N, the general preset as it was after part N (``agent.general_as_of(N)``) against
+the preset after part N - 1 (the fields of ``agent.presets.GENERAL_CHANGES[N]`` at their
+earlier values): CPU seconds per 1,000 environment steps and per learning episode over
+``--episodes`` episodes, on MountainCar-v0 and on the ``paper`` maze, in interleaved rounds
+(agent and reset seed = the round; CPU time of this process, the agent built before the clock
+starts), and the ratios part N / part N - 1 (median over rounds, with their range). The two
+agents learn differently, so they take different steps; what each part changed is in
+:data:`PARTS`.
+
+    python bench/bench_preset_parts.py --part 11          # 3 rounds, about a minute
+    python bench/bench_preset_parts.py --part 9 --rounds 1 --episodes 100
+    python bench/bench_preset_parts.py                    # every part, in order
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from bench_general import compare  # the same tasks and timing (bench/)
+
+from agent import general_as_of
+from agent.presets import GENERAL_CHANGES
+
+PARTS: dict[int, str] = {
+    8: "hold_terminals: held exploration ends after 100 terminals; the preset moves onto "
+    "TreeEnsembleAgent's loop (part 6 measured it about 11 % slower per step on a maze), and an "
+    "exploratory detour ends sooner",
+    9: "model_split_epochs: after each epoch that did not split, the stored epochs of its "
+    "(leaf, action) are valued and the best cut along every input is tested, in Python; the "
+    "tree grown changes with it",
+    10: "novelty_cells: every input counted on a grid until the 10th terminal epoch "
+    "(agent/novelty.py), and the novel ends it stores change the values, the paths and the tree",
+    11: "gamma 0.999 with the unit's horizon kept at 100: the discount costs nothing itself; "
+    "the tree it grows differs",
+    12: "novelty_episodes: the novel ends also stop after 100 episodes; on these two tasks the "
+    "10th terminal comes first, so the runs should be the same",
+}
+"""What part N changed in the preset, and where its cost was expected to come from."""
+
+assert set(PARTS) == set(GENERAL_CHANGES), "a part of GENERAL_CHANGES has no description"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument(
+        "--part", type=int, choices=sorted(PARTS), help="one part (default: every part)"
+    )
+    parser.add_argument("--rounds", type=int, default=3, help="interleaved rounds (3)")
+    parser.add_argument("--episodes", type=int, default=300, help="episodes a run (300)")
+    args = parser.parse_args()
+    if args.rounds < 1 or args.episodes < 1:
+        parser.error("--rounds and --episodes must be at least 1")
+    for part in [args.part] if args.part is not None else sorted(PARTS):
+        print(f"part {part} against part {part - 1}: {PARTS[part]}")
+        compare(
+            f"part {part - 1}",
+            general_as_of(part - 1),
+            general_as_of(part),
+            args.rounds,
+            args.episodes,
+        )
+
+
+if __name__ == "__main__":
+    main()
