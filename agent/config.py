@@ -285,6 +285,12 @@ class TreeConfig:
     any tree's leaf change, so the composite cells are finer than any one tree's leaves.
     1: one tree (the paper). Needs ``presplit_each_dimension`` or ``initial_depth`` (else the
     trees start alike and stay alike)."""
+    ensemble_decisions: str = "any"
+    """With ``ensemble_trees`` > 1, where the agent decides (beyond the paper): ``"any"``, at
+    any tree's leaf change (the composite cells); ``"first"``, only at tree 0's, so the agent
+    decides as often as one tree does while its choice still follows the mean of the rows.
+    Then every other tree learns the stretch between two decisions as one epoch per run of
+    its own leaves, as a held exploratory run is learnt (:meth:`SMDPAgent._end_held_run`)."""
 
     def __post_init__(self) -> None:
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)
@@ -420,6 +426,12 @@ class TreeConfig:
                 f"TreeConfig.ensemble_trees = {self.ensemble_trees} needs a presplit "
                 "(presplit_each_dimension = True or initial_depth > 0): the offsets move the "
                 "presplit points, and unsplit trees would stay identical"
+            )
+        _check_choice("ensemble_decisions", self.ensemble_decisions, ("any", "first"))
+        if self.ensemble_decisions != "any" and self.ensemble_trees < 2:
+            raise ValueError(
+                f"TreeConfig.ensemble_decisions = {self.ensemble_decisions!r} needs "
+                f"ensemble_trees >= 2, got {self.ensemble_trees!r}"
             )
         if self.ensemble_trees > 1 and self.leaves_per_terminal > 0:
             raise ValueError(

@@ -137,6 +137,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "novelty_episodes": (int, type(None)),
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
+    "ensemble_decisions": ("any",),
     "decision_steps": (int, type(None)),
     "hold_steps": (int, type(None)),
     "hold_crossings": (float, int, type(None)),

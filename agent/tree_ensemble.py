@@ -81,7 +81,7 @@ class _Member(TreeAgent):
             ensemble.action_space,
             Greedy(),
             ensemble.seed,
-            dataclasses.replace(ensemble.config, ensemble_trees=1),
+            dataclasses.replace(ensemble.config, ensemble_trees=1, ensemble_decisions="any"),
             (low, high),
         )
 
@@ -389,6 +389,7 @@ class TreeEnsembleAgent(TreeAgent):
             or (cfg.hold_after_truncation and self.last_truncated)
         )
 
+        first_only = cfg.ensemble_decisions == "first"
         x = [float(v) for v in obs]
         leaves = self._leaves(x)
         action = strategy.select(leaves[0], self.mean_row(leaves), rng)
@@ -409,7 +410,7 @@ class TreeEnsembleAgent(TreeAgent):
             r = float(reward)
             xs.append(x)
             rs.append(r)
-            if hold:
+            if hold or first_only:  # tree k's own leaves between two decisions
                 for run, leaf in zip(held, current, strict=True):
                     run.append(leaf)
             steps += 1
@@ -421,15 +422,16 @@ class TreeEnsembleAgent(TreeAgent):
             nxt = self._leaves(x)
             current = nxt
             done = terminated or truncated
+            changed = nxt[0] != leaves[0] if first_only else nxt != leaves
             if (
                 done
-                or (nxt != leaves and not hold)
+                or (changed and not hold)
                 or len(rs) >= (hold_cap if hold else decide)
                 or (collided and end_on_collision)
             ):
                 # decision_steps: an unheld epoch cut inside the same cell continues greedily
                 inside = (
-                    redecide and not hold and nxt == leaves and not (collided and end_on_collision)
+                    redecide and not hold and not changed and not (collided and end_on_collision)
                 )
                 if measure:  # decision_on_failure, before this epoch's updates
                     if terminated:
@@ -439,13 +441,13 @@ class TreeEnsembleAgent(TreeAgent):
                         self.targets += 1
                 splits = []
                 for i, m in enumerate(members):
-                    if hold:
+                    if hold or (first_only and i > 0):
                         split = m._end_held_run(action, xs, rs, held[i], x, terminated)
                     else:
                         bootstrap = 0.0 if terminated else max(m.q[nxt[i]])
                         split = m._end_epoch(leaves[i], action, xs, rs, bootstrap, x, terminated)
                     splits.append(split)
-                if not hold and nxt != leaves:  # a leaf crossing (hold_crossings)
+                if not hold and changed:  # a leaf crossing (hold_crossings)
                     self.crossing_steps += len(rs)
                     self.crossings += 1
                     if crossings_cap is not None:

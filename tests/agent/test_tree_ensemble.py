@@ -101,6 +101,54 @@ def test_any_trees_leaf_change_is_a_decision_point_and_every_tree_learns_it() ->
     assert tree1.visits[right1][1] == 2
 
 
+def _suffix_returns(steps: int, bootstrap: float, g: float = 0.99) -> list[float]:
+    """Eq. (9)'s targets of an epoch of ``steps`` steps of -1, from each of its steps."""
+    out = []
+    for k in range(steps, 0, -1):
+        value = bootstrap
+        for _ in range(k):
+            value = -1 + g * value
+        out.append(value)
+    return out
+
+
+def test_first_tree_decisions_keep_one_trees_epochs_and_the_others_learn_their_own_leaves() -> None:
+    # The walk of the test above with ensemble_decisions = "first": the agent decides only when
+    # tree 0's leaf changes (at 0.52), so 2 epochs instead of 3; tree 1 learns the first
+    # decision's stretch as one epoch per run of its own leaves (0.02-0.22 | 0.32-0.42).
+    env = Walk()
+    config = plain_config(ensemble_trees=2, ensemble_decisions="first")
+    agent = TreeEnsembleAgent(env.observation_space, env.action_space, "greedy", 0, config)
+    tree0, tree1 = agent.members
+    b = 1e-9
+    for member in agent.members:
+        for row in member.q:
+            row[:] = [-1e6, b]
+    stats = agent.learn(env, 1, reset_seed=0)[0]
+    assert stats.steps == 10
+    assert stats.epochs == 2
+    left0, right0 = tree0.partition.leaf_of([0.1]), tree0.partition.leaf_of([0.6])
+    left1, right1 = tree1.partition.leaf_of([0.1]), tree1.partition.leaf_of([0.3])
+    mean = np.mean
+    assert tree0.visits[left0][1] == 1
+    assert tree0.q[left0][1] == pytest.approx(0.5 * b + 0.5 * mean(_suffix_returns(5, b)))
+    assert tree0.visits[right0][1] == 1
+    assert tree0.q[right0][1] == pytest.approx(0.5 * b + 0.5 * mean(_suffix_returns(5, 0.0)))
+    assert tree1.visits[left1][1] == 1
+    assert tree1.q[left1][1] == pytest.approx(0.5 * b + 0.5 * mean(_suffix_returns(3, b)))
+    assert tree1.visits[right1][1] == 2
+    first = 0.5 * b + 0.5 * mean(_suffix_returns(2, b))
+    assert tree1.q[right1][1] == pytest.approx(0.5 * first + 0.5 * mean(_suffix_returns(5, 0.0)))
+
+
+def test_ensemble_decisions_are_checked() -> None:
+    with pytest.raises(ValueError, match="ensemble_decisions must be one of"):
+        plain_config(ensemble_trees=2, ensemble_decisions="all")
+    with pytest.raises(ValueError, match=r"ensemble_decisions = 'first' needs ensemble_trees >= 2"):
+        plain_config(ensemble_decisions="first")
+    assert plain_config(ensemble_trees=2).ensemble_decisions == "any"
+
+
 def test_actions_follow_the_mean_of_the_trees_rows() -> None:
     env = Walk()
     agent = TreeEnsembleAgent(

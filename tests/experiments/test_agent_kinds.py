@@ -377,3 +377,26 @@ def test_novel_ends_without_the_model_name_the_file_and_field() -> None:
     strategy = {"name": "novel", "exploration": "adaptive+tabu", "config": {"novelty_cells": 64}}
     message = _refusal(strategy)
     assert "novelty_cells = 64 needs planning = 'sweep'" in message, message
+
+
+@pytest.mark.parametrize(
+    ("config", "defect"),
+    [
+        (
+            {"ensemble_decisions": "first"},
+            "ensemble_decisions = 'first' needs ensemble_trees >= 2, got 1",
+        ),
+        (
+            {"ensemble_trees": 2, "ensemble_decisions": "each"},
+            "ensemble_decisions must be one of ['any', 'first'], got 'each'",
+        ),
+        ({"ensemble_trees": 2, "ensemble_decisions": 1}, "ensemble_decisions"),
+        ({"ensemble_trees": 2, "ensemble_decisions": True}, "ensemble_decisions"),
+    ],
+)
+def test_bad_ensemble_decisions_name_the_file_and_field(
+    config: dict[str, Any], defect: str
+) -> None:
+    """Part 13's option in a strategy table: every bad value is refused by name."""
+    message = _refusal({"name": "trees", "preset": "general", "config": config})
+    assert defect in message, message
