@@ -69,19 +69,29 @@ def test_a_shifted_tree_presplits_off_the_midpoints() -> None:
     assert tree.leaf_of([0.3, 0.1]) == tree.leaf_of([0.6, 0.3])
 
 
+B = 1e-9
+"""Action 1's start value in :func:`_walked_once`: action 0 starts so bad that greedy always
+takes action 1."""
+
+
+def _walked_once(**changes: Any) -> tuple[TreeEnsembleAgent, Any]:
+    """A greedy ensemble of ``plain_config(**changes)`` after one episode of the walk, every
+    row starting at [-1e6, B]."""
+    env = Walk()
+    config = plain_config(**changes)
+    agent = TreeEnsembleAgent(env.observation_space, env.action_space, "greedy", 0, config)
+    for member in agent.members:
+        for row in member.q:
+            row[:] = [-1e6, B]
+    return agent, agent.learn(env, 1, reset_seed=0)[0]
+
+
 def test_any_trees_leaf_change_is_a_decision_point_and_every_tree_learns_it() -> None:
     # K = 2 on [0, 1]: tree 0 presplits at 0.5, tree 1 (shift -1/2) at 0.25. Action 0 starts
     # so bad that greedy always takes action 1: x = 0.02, 0.12, ..., 0.92, then 1.02 (the end).
-    env = Walk()
-    agent = TreeEnsembleAgent(
-        env.observation_space, env.action_space, "greedy", 0, plain_config(ensemble_trees=2)
-    )
+    agent, stats = _walked_once(ensemble_trees=2)
     tree0, tree1 = agent.members
-    b = 1e-9
-    for member in agent.members:
-        for row in member.q:
-            row[:] = [-1e6, b]
-    stats = agent.learn(env, 1, reset_seed=0)[0]
+    b = B
     assert stats.steps == 10
     assert stats.epochs == 3  # inputs 0.02-0.22 | 0.32-0.42 | 0.52-0.92: tree 1, then tree 0
     left0, right0 = tree0.partition.leaf_of([0.1]), tree0.partition.leaf_of([0.6])
@@ -116,15 +126,9 @@ def test_first_tree_decisions_keep_one_trees_epochs_and_the_others_learn_their_o
     # The walk of the test above with ensemble_decisions = "first": the agent decides only when
     # tree 0's leaf changes (at 0.52), so 2 epochs instead of 3; tree 1 learns the first
     # decision's stretch as one epoch per run of its own leaves (0.02-0.22 | 0.32-0.42).
-    env = Walk()
-    config = plain_config(ensemble_trees=2, ensemble_decisions="first")
-    agent = TreeEnsembleAgent(env.observation_space, env.action_space, "greedy", 0, config)
+    agent, stats = _walked_once(ensemble_trees=2, ensemble_decisions="first")
     tree0, tree1 = agent.members
-    b = 1e-9
-    for member in agent.members:
-        for row in member.q:
-            row[:] = [-1e6, b]
-    stats = agent.learn(env, 1, reset_seed=0)[0]
+    b = B
     assert stats.steps == 10
     assert stats.epochs == 2
     left0, right0 = tree0.partition.leaf_of([0.1]), tree0.partition.leaf_of([0.6])

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import sys
+from collections.abc import Callable
 
 import gymnasium as gym
 import numpy as np
@@ -32,9 +33,10 @@ from bullet_maze import planning
 MOVES = [(0, 1), (0, -1), (-1, 0), (1, 0)]  # the compass actions' directions, in action order
 
 
-def main(spec: str, episodes: int) -> None:
-    env = gym.make("BulletMaze-v0", maze=spec, max_episode_steps=2000)
-    env.reset(seed=0)
+def move_scorer(env: gym.Env) -> Callable[[float, float, int, int], float]:
+    """``score(x, y, dx, dy)``: the true geodesic distance to the goal from the noise-free end
+    of the compass move (dx, dy) from (x, y), inf where its straight segment leaves the free
+    grid nodes (the planner's 4-connected grid of ``env``'s maze)."""
     maze = env.unwrapped
     layout, radius, step = maze.layout, maze.robot.radius, maze.task.step_size
     grid = planning._Grid(layout, radius, planning.grid_cell(layout, radius))
@@ -54,6 +56,14 @@ def main(spec: str, episodes: int) -> None:
         end = node(x + step * dx, y + step * dy)
         return math.inf if end is None else float(to_goal[end])
 
+    return score
+
+
+def main(spec: str, episodes: int) -> None:
+    env = gym.make("BulletMaze-v0", maze=spec, max_episode_steps=2000)
+    env.reset(seed=0)
+    maze = env.unwrapped
+    score = move_scorer(env)
     rng = np.random.default_rng(0)
     lengths = []
     for episode in range(episodes):

@@ -17,16 +17,16 @@ from __future__ import annotations
 
 import math
 import sys
+from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
-from scipy.sparse.csgraph import dijkstra
 
 import bullet_maze  # noqa: F401  (registers BulletMaze-v0)
 from agent import preset
-from bullet_maze import planning
 
-MOVES = [(0, 1), (0, -1), (-1, 0), (1, 0)]  # the compass actions' directions, in action order
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "issue9_horizon_dev"))
+from oracle import MOVES, move_scorer  # part 11's oracle, beside this folder
 
 
 def main(spec: str, seed: int) -> None:
@@ -34,23 +34,7 @@ def main(spec: str, seed: int) -> None:
     agent = preset("general").agent(env.observation_space, env.action_space, seed)
     agent.learn(env, 600, reset_seed=seed)
     maze = env.unwrapped
-    layout, radius, step = maze.layout, maze.robot.radius, maze.task.step_size  # type: ignore[attr-defined]
-    grid = planning._Grid(layout, radius, planning.grid_cell(layout, radius))
-    goals = grid.goal_nodes(layout.goal, layout.goal_radius)
-    to_goal = dijkstra(grid.edges(diagonal=False), indices=goals, min_only=True)
-    to_goal = to_goal.reshape(grid.nx, grid.ny)
-
-    def node(x: float, y: float) -> tuple[int, int] | None:
-        i, j = round(x / grid.h), round(y / grid.h)
-        return (i, j) if 0 <= i < grid.nx and 0 <= j < grid.ny else None
-
-    def score(x: float, y: float, dx: int, dy: int) -> float:
-        for t in np.linspace(0.0, 1.0, 12):
-            at = node(x + step * dx * t, y + step * dy * t)
-            if at is None or not grid.free[at]:
-                return math.inf
-        end = node(x + step * dx, y + step * dy)
-        return math.inf if end is None else float(to_goal[end])
+    score = move_scorer(env)
 
     obs, _ = env.reset(seed=10**6)
     greedy_steps, done = 0, False
