@@ -268,7 +268,8 @@ def record_report_config(
     if not recorded.exists():
         return  # no run has recorded an experiment here: nothing to describe
     previous = config_module.load_config(recorded, allowed_env_ids)
-    if not config_module.same_experiment(previous, config):
+    unchanged = not config_module.same_experiment(previous, config)
+    if unchanged and previous.description == config.description:  # the report copies it
         return
     try:
         with FolderLock(out_dir):

@@ -362,6 +362,11 @@ def test_report_only_records_changed_report_settings(small_data, standins, tmp_p
     recorded = config_module.load_config(out / runner.CONFIG_FILE)
     assert recorded.final_window == 30
     assert "of the last 30 episodes" in (out / "report.md").read_text()
+    # the description is the report's too
+    small_data["experiment"]["description"] = "a new description"
+    _report_only(parse_config(small_data, source="small.toml"), out, standins)
+    assert config_module.load_config(out / runner.CONFIG_FILE).description == "a new description"
+    assert "a new description" in (out / "report.md").read_text()
     assert {p.name: p.read_bytes() for p in (out / "runs").iterdir()} == runs_before
     # a run with the new file finds every run finished: nothing is recomputed or refused
     assert runner.run_experiment(wider, out, SerialBackend(), standins.fake_run) == []
