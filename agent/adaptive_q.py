@@ -33,18 +33,17 @@ State is plain data: per action the boxes (low, high), Q, visits, depth and chil
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
-from agent.episode_stats import EpisodeStats
+from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
+from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
 from agent.spaces import action_count, observation_bounds, squash
-
-Callback = Callable[[EpisodeStats], bool | None]
 
 
 class BoxTree:
@@ -224,9 +223,7 @@ class AdaptiveQAgent:
         return [tree.q[n] for tree, n in zip(self.trees, nodes, strict=True)], nodes
 
     def _greedy(self, values: list[float]) -> int:
-        best = max(values)
-        ties = [a for a, v in enumerate(values) if v == best]
-        return ties[0] if len(ties) == 1 else ties[int(self.uniform.random() * len(ties))]
+        return greedy_action(values, self.uniform)
 
     def learn(
         self,
@@ -236,22 +233,8 @@ class AdaptiveQAgent:
         reset_seed: int | None = None,
     ) -> list[EpisodeStats]:
         """Train for ``episodes`` episodes (as :meth:`agent.SMDPAgent.learn`)."""
-        if isinstance(episodes, bool) or not isinstance(episodes, int) or episodes < 0:
-            raise ValueError(f"episodes must be an int >= 0, got {episodes!r}")
-        env_actions = getattr(env.action_space, "n", None)
-        if env_actions is None or int(env_actions) != self.n_actions:
-            raise ValueError(
-                f"env.action_space {env.action_space!r} does not match the agent's "
-                f"{self.n_actions} actions"
-            )
-        history: list[EpisodeStats] = []
-        for i in range(episodes):
-            obs, _ = env.reset(seed=reset_seed if i == 0 else None)
-            stats = self._run_episode(env, obs)
-            history.append(stats)
-            if callback is not None and callback(stats) is False:
-                break
-        return history
+        check_learn_arguments(env, episodes, self.n_actions)
+        return run_episodes(env, episodes, self._run_episode, callback, reset_seed)
 
     def update(self, x: list[float], action: int, reward: float, next_value: float) -> None:
         """One step of Algorithm 1 on the box of (x, action); ``next_value`` is V(x') (0 at a

@@ -1,8 +1,11 @@
-"""Per-episode statistics returned by ``learn``."""
+"""Per-episode statistics returned by ``learn``, and the checks and loop every agent's
+``learn`` shares."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -27,3 +30,38 @@ class EpisodeStats:
     """SMDP epochs (decision points) in the episode (section IV.A)."""
     mean_epsilon: float = 0.0
     """Mean exploration rate at the episode's decision points."""
+
+
+Callback = Callable[[EpisodeStats], bool | None]
+"""Called after each episode of ``learn``; returning ``False`` stops learning."""
+
+
+def check_learn_arguments(env: Any, episodes: object, n_actions: int) -> None:
+    """A ValueError naming the value unless ``episodes`` is an int >= 0 (not a bool) and
+    ``env`` has a discrete action space of the agent's ``n_actions`` actions."""
+    if isinstance(episodes, bool) or not isinstance(episodes, int) or episodes < 0:
+        raise ValueError(f"episodes must be an int >= 0, got {episodes!r}")
+    env_actions = getattr(env.action_space, "n", None)
+    if env_actions is None or int(env_actions) != n_actions:
+        raise ValueError(
+            f"env.action_space {env.action_space!r} does not match the agent's {n_actions} actions"
+        )
+
+
+def run_episodes(
+    env: Any,
+    episodes: int,
+    run_episode: Callable[[Any, Any], EpisodeStats],
+    callback: Callback | None = None,
+    reset_seed: int | None = None,
+) -> list[EpisodeStats]:
+    """``episodes`` episodes of ``run_episode(env, obs)``, the first reset with ``reset_seed``
+    and the rest unseeded; ``callback(stats)`` after each, ``False`` stops."""
+    history: list[EpisodeStats] = []
+    for i in range(episodes):
+        obs, _ = env.reset(seed=reset_seed if i == 0 else None)
+        stats = run_episode(env, obs)
+        history.append(stats)
+        if callback is not None and callback(stats) is False:
+            break
+    return history

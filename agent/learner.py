@@ -19,7 +19,7 @@ import numpy as np
 from gymnasium import spaces
 
 from agent.config import TreeConfig
-from agent.episode_stats import EpisodeStats
+from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments
 from agent.exploration import Exploration, make_exploration
 from agent.inspection import LeafInfo, render_partition
 from agent.leaf_model import LeafModel
@@ -40,7 +40,6 @@ if TYPE_CHECKING:
 logger = logging.getLogger(__name__)
 
 Bounds = tuple[Sequence[float], Sequence[float]]
-Callback = Callable[[EpisodeStats], bool | None]
 RunnerFactory = Callable[["SMDPAgent", Any], Callable[[Any, Any], EpisodeStats]]
 
 _fast_runner: RunnerFactory | None = None
@@ -167,14 +166,7 @@ class SMDPAgent:
         """
         if not isinstance(fast, bool):
             raise TypeError(f"fast must be a bool, got {fast!r}")
-        if not isinstance(episodes, int) or episodes < 0:
-            raise ValueError(f"episodes must be an int >= 0, got {episodes!r}")
-        env_actions = getattr(env.action_space, "n", None)
-        if env_actions is None or int(env_actions) != self.n_actions:
-            raise ValueError(
-                f"env.action_space {env.action_space!r} does not match the agent's "
-                f"{self.n_actions} actions"
-            )
+        check_learn_arguments(env, episodes, self.n_actions)
         run_episode: Callable[[Any, Any], EpisodeStats] = self._run_episode
         if fast and episodes > 0 and _fast_runner is not None:
             run_episode = _fast_runner(self, env)

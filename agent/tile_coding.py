@@ -27,20 +27,19 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
-from agent.episode_stats import EpisodeStats
+from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
+from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
 from agent.spaces import action_count, observation_bounds, squash
 
 logger = logging.getLogger(__name__)
-
-Callback = Callable[[EpisodeStats], bool | None]
 
 
 class TileCoder:
@@ -190,9 +189,7 @@ class TileCodingAgent:
         uniform = self.uniform
         if self.epsilon > 0.0 and uniform.random() < self.epsilon:
             return int(uniform.random() * self.n_actions)
-        best = max(values)
-        ties = [a for a, v in enumerate(values) if v == best]
-        return ties[0] if len(ties) == 1 else ties[int(uniform.random() * len(ties))]
+        return greedy_action(values, uniform)
 
     def learn(
         self,
@@ -202,22 +199,8 @@ class TileCodingAgent:
         reset_seed: int | None = None,
     ) -> list[EpisodeStats]:
         """Train for ``episodes`` episodes (as :meth:`agent.SMDPAgent.learn`)."""
-        if isinstance(episodes, bool) or not isinstance(episodes, int) or episodes < 0:
-            raise ValueError(f"episodes must be an int >= 0, got {episodes!r}")
-        env_actions = getattr(env.action_space, "n", None)
-        if env_actions is None or int(env_actions) != self.n_actions:
-            raise ValueError(
-                f"env.action_space {env.action_space!r} does not match the agent's "
-                f"{self.n_actions} actions"
-            )
-        history: list[EpisodeStats] = []
-        for i in range(episodes):
-            obs, _ = env.reset(seed=reset_seed if i == 0 else None)
-            stats = self._run_episode(env, obs)
-            history.append(stats)
-            if callback is not None and callback(stats) is False:
-                break
-        return history
+        check_learn_arguments(env, episodes, self.n_actions)
+        return run_episodes(env, episodes, self._run_episode, callback, reset_seed)
 
     def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:
         step_size = self.alpha / self.tilings
