@@ -21,11 +21,10 @@ from typing import Any
 
 import numpy as np
 
-from agent.learner import SMDPAgent
-
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "issue9_hold_terminals_dev"))
 import curves  # noqa: E402  (part 8's maze driver, beside this folder)
+from collision_split import patch_collision_splits  # noqa: E402  (the shared patch, beside this)
 
 
 def best_cut(
@@ -34,7 +33,7 @@ def best_cut(
     """The (dimension, value) that best separates ``bad`` from the rest, or None."""
     n = len(bad)
     unsplit = min(int(bad.sum()), n - int(bad.sum()))
-    best: tuple[int, float, float] | None = None  # (errors, distance from middle) ranks
+    best: tuple[int, float] | None = None
     best_key = (unsplit, 0.0)
     for dim in range(firsts.shape[1]):
         order = np.argsort(firsts[:, dim], kind="stable")
@@ -56,25 +55,15 @@ def best_cut(
                 abs(value - 0.5 * (low[dim] + high[dim])) / (high[dim] - low[dim]),
             )
             if key < best_key:
-                best_key, best = key, (dim, value, 0.0)
-    return None if best is None else (best[0], best[1])
+                best_key, best = key, (dim, value)
+    return best  # ranked by (errors, distance from the middle)
 
 
 def patch() -> None:
-    end_epoch = SMDPAgent._end_epoch
-    model_split = SMDPAgent._model_split
-
-    def patched_end_epoch(self: Any, leaf: int, action: int, xs: Any, rs: Any, *args: Any) -> bool:
-        self._collided_epoch = bool(rs) and rs[-1] <= -0.5
-        return end_epoch(self, leaf, action, xs, rs, *args)
-
-    def patched_model_split(self: Any, leaf: int, action: int) -> Any:
-        children = model_split(self, leaf, action)
-        if children is not None or not getattr(self, "_collided_epoch", False):
-            return children
+    def separating_cut(self: Any, leaf: int, action: int) -> Any:
         partition, model = self.partition, self.model
         records = model._records.get(leaf * self.n_actions + action) if model else None
-        if not records or len(records) < 2 or not partition.may_split():
+        if not records or len(records) < 2:
             return None
         bad = np.array([r[1] <= -0.5 for r in records])
         if bad.all() or not bad.any():
@@ -84,8 +73,7 @@ def patch() -> None:
         cut = best_cut(firsts, bad, low, high, min_width)
         return None if cut is None else partition.split_with_samples(leaf, *cut)
 
-    SMDPAgent._end_epoch = patched_end_epoch  # type: ignore[method-assign]
-    SMDPAgent._model_split = patched_model_split  # type: ignore[method-assign]
+    patch_collision_splits(separating_cut)
 
 
 if __name__ == "__main__":

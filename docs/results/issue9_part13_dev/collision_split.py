@@ -17,6 +17,7 @@ every 50) and appends to ``maze_collision.jsonl``::
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -29,7 +30,10 @@ import curves  # noqa: E402  (part 8's maze driver, beside this folder)
 FLOOR = 32
 
 
-def patch(floor: int) -> None:
+def patch_collision_splits(choose: Callable[[Any, int, int], Any]) -> None:
+    """Patch ``SMDPAgent`` so that after an epoch whose last step collided, when neither the
+    paper's test nor the model split has split its start leaf, ``choose(agent, leaf, action)``
+    may split it (it returns the children or None). Shared with ``collision_cut.py``."""
     end_epoch = SMDPAgent._end_epoch
     model_split = SMDPAgent._model_split
 
@@ -41,23 +45,28 @@ def patch(floor: int) -> None:
         children = model_split(self, leaf, action)
         if children is not None or not getattr(self, "_collided_epoch", False):
             return children
-        partition = self.partition
-        if not partition.may_split():
+        if not self.partition.may_split():
             return None
+        return choose(self, leaf, action)
+
+    SMDPAgent._end_epoch = patched_end_epoch  # type: ignore[method-assign]
+    SMDPAgent._model_split = patched_model_split  # type: ignore[method-assign]
+
+
+def patch(floor: int) -> None:
+    """Midpoint splits of the widest dimension while it exceeds ``1 / floor`` of the root's."""
+
+    def midpoint(self: Any, leaf: int, action: int) -> Any:
+        partition = self.partition
         low, high = partition.leaf_bounds(leaf)
-        widths = [
-            (h - lo) / (rh - rl)
-            for lo, h, rl, rh in zip(
-                low, high, partition.root_low, partition.root_high, strict=True
-            )
-        ]
+        roots = zip(low, high, partition.root_low, partition.root_high, strict=True)
+        widths = [(h - lo) / (rh - rl) for lo, h, rl, rh in roots]
         dim = max(range(len(widths)), key=widths.__getitem__)
         if widths[dim] <= 1.0 / floor:
             return None
         return partition.split_with_samples(leaf, dim, 0.5 * (low[dim] + high[dim]))
 
-    SMDPAgent._end_epoch = patched_end_epoch  # type: ignore[method-assign]
-    SMDPAgent._model_split = patched_model_split  # type: ignore[method-assign]
+    patch_collision_splits(midpoint)
 
 
 if __name__ == "__main__":
