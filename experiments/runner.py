@@ -273,6 +273,7 @@ def record_report_config(
         return
     try:
         with FolderLock(out_dir):
+            # read again under the lock: a run may have recorded another file meanwhile
             record_config(config, out_dir, allowed_env_ids)
     except FolderBusyError as error:
         raise ConfigError(str(error)) from None
