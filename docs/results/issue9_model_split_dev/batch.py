@@ -3,7 +3,8 @@
     python batch.py maze OUT LAYOUT_FILE SEEDS 'label=PROTOTYPE_JSON|OVERRIDES_JSON' ...
     python batch.py classic OUT TASK,TASK SEEDS 'label=PROTOTYPE_JSON|OVERRIDES_JSON' ...
 
-An empty PROTOTYPE_JSON runs the committed code with the TreeConfig overrides.
+An empty PROTOTYPE_JSON runs the committed code with the TreeConfig overrides. A job that
+fails writes no line; its exit code and the end of its stderr go to ``OUT.err``.
 """
 
 from __future__ import annotations
@@ -34,15 +35,20 @@ def main(argv: list[str]) -> None:
     def go(job: tuple[str, int, tuple[str, str, str]]) -> None:
         name, seed, (label, prototype, overrides) = job
         command = [sys.executable, str(HERE / "job.py"), kind, name, str(seed), label]
-        subprocess.run(
+        done = subprocess.run(
             [*command, overrides, out],
             env=dict(os.environ, MS=prototype),
             cwd=ROOT,
             stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
             timeout=3600,
             check=False,
         )
+        if done.returncode != 0:  # a failed job writes no line: say which, and why
+            with open(f"{out}.err", "a") as errors:
+                errors.write(f"== {kind} {name} seed {seed} {label}: exit {done.returncode}\n")
+                errors.write(done.stderr[-4000:] + "\n")
 
     with ThreadPoolExecutor(int(os.environ.get("W", "2"))) as pool:
         list(pool.map(go, jobs))
