@@ -202,6 +202,15 @@ class TreeConfig:
     IV.B's buffer) instead of handing them to the children as ``children_inherit_samples``
     does for the paper's splits. The prototype did this; measured in docs/paper-notes.md,
     "Model-driven splits"."""
+    collision_splits: bool = False
+    """Collision splits (beyond the paper; :mod:`agent.collision_split`): the model of
+    ``planning = "sweep"`` marks each stored epoch that ended on a collision (the env's
+    ``info[collision_key]``), and after such an epoch, when no other test split its leaf, the
+    leaf is cut where the stored epochs of that action that collided and those that did not
+    best separate. A leaf beside a pillar or a door post otherwise keeps one averaged value
+    for an action that collides from one part of it and passes from the other. Needs the
+    model. Runs on :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop. An env that reports
+    no collisions never triggers it. False: off."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -369,6 +378,15 @@ class TreeConfig:
                 "the holds hold_terminals ends)"
             )
         self._check_model_split()
+        if not isinstance(self.collision_splits, bool):
+            raise ValueError(
+                f"TreeConfig.collision_splits must be a bool, got {self.collision_splits!r}"
+            )
+        if self.collision_splits and self.planning != "sweep":
+            raise ValueError(
+                "TreeConfig.collision_splits = True needs planning = 'sweep' (it cuts between "
+                f"the model's stored epochs), got planning = {self.planning!r}"
+            )
         self._check_novelty()
         if self.decision_on_failure and self.decision_steps is None:
             raise ValueError(
@@ -544,6 +562,7 @@ LOOP_OPTIONS: dict[str, Any] = {
     "hold_terminals": None,
     "hold_after_truncation": False,
     "model_lambda": 0.0,
+    "collision_splits": False,
 }
 """Each ``TreeConfig`` option that only the tree ensemble's loop runs, with its off value."""
 

@@ -145,6 +145,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "decision_on_failure": bool,
     "hold_terminals": (int, type(None)),
     "hold_after_truncation": bool,
+    # needs the model, which turns the loop off (and it makes the agent a TreeEnsembleAgent)
+    "collision_splits": bool,
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""

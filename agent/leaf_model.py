@@ -30,8 +30,9 @@ from collections import deque
 from collections.abc import Callable
 from typing import Any
 
-Record = tuple[list[float], float, float, list[float] | None, int]
-"""(first input, mean reward part R, mean discount D, end state or None if terminal, end leaf)."""
+Record = tuple[list[float], float, float, list[float] | None, int, bool]
+"""(first input, mean reward part R, mean discount D, end state or None if terminal, end leaf,
+whether the epoch ended on a collision: ``TreeConfig.collision_splits`` marks it)."""
 _TERMINAL = -1
 _NOVEL = -2
 """The end leaf of a novel end (``TreeConfig.novelty_cells``): V-bar after it is
@@ -85,7 +86,7 @@ class LeafModel:
         if records is None:
             records = self._records[key] = deque()
         target = _TERMINAL if end is None else _NOVEL if novel else end_leaf
-        records.append((first, reward, discount, end, target))
+        records.append((first, reward, discount, end, target, False))
         self._link(target, key, 1)
         if len(records) > self.window:
             old = records.popleft()
@@ -120,9 +121,27 @@ class LeafModel:
             reward
             if end is None
             else reward + discount * (novel if end_leaf == _NOVEL else max(q[end_leaf]))
-            for _, reward, discount, end, end_leaf in records
+            for _, reward, discount, end, end_leaf, _ in records
         ]
         return firsts, values
+
+    def collisions(self, leaf: int, action: int) -> tuple[list[list[float]], list[bool]]:
+        """The first input of every stored epoch of (leaf, action), oldest first, and whether
+        it ended on a collision (``TreeConfig.collision_splits``)."""
+        records = self._records.get(leaf * self.n_actions + action)
+        if not records:
+            return [], []
+        return [record[0] for record in records], [record[5] for record in records]
+
+    def mark_collided(self, leaf: int, action: int, first: list[float]) -> bool:
+        """Mark the stored epoch of (leaf, action) that began at ``first`` (the very list it
+        was stored with) as ended on a collision; False when it is not stored there."""
+        i = self.locate(leaf, action, first)
+        if i is None:
+            return False
+        records = self._records[leaf * self.n_actions + action]
+        records[i] = (*records[i][:5], True)
+        return True
 
     def locate(self, leaf: int, action: int, first: list[float]) -> int | None:
         """The place in the window of (leaf, action) of the stored epoch that began at
@@ -157,11 +176,11 @@ class LeafModel:
             return None
         key = leaf * self.n_actions + action
         records = self._records[key]
-        begun, reward, discount, end, end_leaf = records[i]
+        begun, reward, discount, end, end_leaf, collided = records[i]
         if end is None:
             return None
         blended = reward + lam * discount * after
-        records[i] = (begun, blended, (1.0 - lam) * discount, end, end_leaf)
+        records[i] = (begun, blended, (1.0 - lam) * discount, end, end_leaf, collided)
         self._aggregate(key)
         return reward, discount
 
@@ -176,8 +195,8 @@ class LeafModel:
             return False
         key = leaf * self.n_actions + action
         records = self._records[key]
-        begun, _, _, end, end_leaf = records[i]
-        records[i] = (begun, reward, discount, end, end_leaf)
+        begun, _, _, end, end_leaf, collided = records[i]
+        records[i] = (begun, reward, discount, end, end_leaf, collided)
         self._aggregate(key)
         return True
 
@@ -300,11 +319,11 @@ class LeafModel:
         end at the leaf ``leaf_of`` gives their end state, and are linked to it (the caller
         re-aggregates ``key``)."""
         refiled: deque[Record] = deque()
-        for first, reward, discount, end, end_leaf in self._records[key]:
+        for first, reward, discount, end, end_leaf, collided in self._records[key]:
             if end_leaf == old and end is not None:
                 end_leaf = leaf_of(end)
                 self._link(end_leaf, key, 1)
-            refiled.append((first, reward, discount, end, end_leaf))
+            refiled.append((first, reward, discount, end, end_leaf, collided))
         self._records[key] = refiled
 
     def _link(self, end_leaf: int, key: int, change: int) -> None:
@@ -325,7 +344,7 @@ class LeafModel:
         """Recompute the key's sums from its window (exact: no running sums that drift)."""
         reward = 0.0
         discount: dict[int, float] = {}
-        for _, r, d, end, end_leaf in self._records[key]:
+        for _, r, d, end, end_leaf, _ in self._records[key]:
             reward += r
             if end_leaf == _NOVEL:
                 reward += d * self.novel_value
@@ -337,12 +356,13 @@ class LeafModel:
     def state(self) -> dict[str, Any]:
         """JSON-ready state: every stored epoch, the epoch counts, the predecessor links and the
         sweep queue, each in its order (a sweep visits predecessors in the links' order and
-        pops the heap as it lies, so a restored model continues bit for bit)."""
+        pops the heap as it lies, so a restored model continues bit for bit). An epoch that
+        ended on a collision has a sixth entry, ``True`` (``TreeConfig.collision_splits``);
+        the others have five, as before that field."""
         state: dict[str, Any] = {
             "window": self.window,
             "records": [
-                [key, [[list(f), r, d, None if e is None else list(e), t] for f, r, d, e, t in rs]]
-                for key, rs in self._records.items()
+                [key, [_record_state(record) for record in rs]] for key, rs in self._records.items()
             ],
             "epochs": [[k, n] for k, n in self.epochs.items()],
             "preds": [
@@ -365,15 +385,8 @@ class LeafModel:
         model.novel_value = novel_value
         for key, records in state["records"]:
             bucket = model._records[int(key)] = deque()
-            for first, reward, discount, end, end_leaf in records:
-                record: Record = (
-                    [float(v) for v in first],
-                    float(reward),
-                    float(discount),
-                    None if end is None else [float(v) for v in end],
-                    int(end_leaf),
-                )
-                bucket.append(record)
+            for entry in records:
+                bucket.append(_record_from_state(entry))
             model._aggregate(int(key))
         model.epochs = {int(k): int(n) for k, n in state["epochs"]}
         model._preds = {
@@ -419,3 +432,27 @@ def _seen_cells(entries: Any) -> dict[tuple[int, ...], int]:
             raise ValueError(f"the model's seen cell {cell!r} is listed twice")
         seen[tuple(cell)] = count
     return seen
+
+
+def _record_state(record: Record) -> list[Any]:
+    """One stored epoch as JSON-ready data (:meth:`LeafModel.state`)."""
+    first, reward, discount, end, end_leaf, collided = record
+    entry = [list(first), reward, discount, None if end is None else list(end), end_leaf]
+    return [*entry, True] if collided else entry
+
+
+def _record_from_state(entry: Any) -> Record:
+    """Inverse of :func:`_record_state`; a sixth entry must be ``True``."""
+    if not isinstance(entry, list | tuple) or len(entry) not in (5, 6):
+        raise ValueError(f"a stored epoch of the model must have 5 or 6 entries, got {entry!r}")
+    if len(entry) == 6 and entry[5] is not True:
+        raise ValueError(f"a stored epoch's collision mark must be true, got {entry[5]!r}")
+    first, reward, discount, end, end_leaf = entry[:5]
+    return (
+        [float(v) for v in first],
+        float(reward),
+        float(discount),
+        None if end is None else [float(v) for v in end],
+        int(end_leaf),
+        len(entry) == 6,
+    )

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import numpy as np
+
+from agent.collision_split import choose_collision_split
 from agent.learner import SMDPAgent
 from agent.partition_tree import GatedPartitionTree, PartitionTree
 
@@ -19,6 +22,10 @@ class TreeAgent(SMDPAgent):
     kind = "tree"
     accepts_unbounded = True
     partition: PartitionTree
+    collision_end: list[float] | None = None
+    """``TreeConfig.collision_splits``: the input at which the epochs ending now end, when
+    their last step collided (the loop sets it; None otherwise). An epoch whose ``end_x`` is
+    this very list ended on the collision; the earlier stretches of a held run do not."""
 
     def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
         if self.config.leaves_per_terminal > 0:
@@ -37,13 +44,42 @@ class TreeAgent(SMDPAgent):
     ) -> bool:
         """:meth:`SMDPAgent._end_epoch`; a terminal epoch first grows a gated tree's leaf
         budget (``TreeConfig.leaves_per_terminal``) and afterwards may end the model's bonus
-        (``TreeConfig.model_bonus_terminals``)."""
+        (``TreeConfig.model_bonus_terminals``); an epoch that ended on a collision is marked in
+        the model and may cut its leaf (``TreeConfig.collision_splits``)."""
         if terminated and type(self.partition) is GatedPartitionTree:
             self.partition.terminals += 1
         split = super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
         if terminated:
             self._after_terminal_epoch()
+        if end_x is not None and end_x is self.collision_end and self.model is not None:
+            held = self.partition.leaf_of(xs[0])  # the epoch's leaf, or the child holding it
+            self.model.mark_collided(held, action, xs[0])
+            if not split:
+                split = self._collision_split(leaf, action)
         return split
+
+    def _collision_split(self, leaf: int, action: int) -> bool:
+        """``TreeConfig.collision_splits``: cut ``leaf`` where the stored epochs of ``action``
+        that ended on a collision and those that did not best separate
+        (:func:`agent.collision_split.choose_collision_split`); returns whether it split."""
+        partition = self.partition
+        if not partition.may_split():
+            return False
+        firsts, collided = self.model.collisions(leaf, action)  # type: ignore[union-attr]
+        if len(firsts) < 2:
+            return False
+        low, high, _, min_width = partition.split_box(leaf)
+        choice = choose_collision_split(
+            np.asarray(firsts, dtype=np.float64),
+            np.asarray(collided, dtype=np.bool_),
+            low,
+            high,
+            min_width,
+        )
+        if choice is None:
+            return False
+        self._grow(leaf, partition.split_with_samples(leaf, *choice))
+        return True
 
     @property
     def depth(self) -> int:

@@ -39,7 +39,7 @@ from agent.config import TreeConfig
 from agent.episode_stats import EpisodeStats
 from agent.exploration import Exploration, Greedy
 from agent.exploration.base import greedy_action
-from agent.learner import Bounds, SMDPAgent
+from agent.learner import Bounds
 from agent.partition_tree import PartitionTree
 from agent.smdp import epoch_returns
 from agent.tree_agent import TreeAgent
@@ -117,7 +117,7 @@ class TreeEnsembleAgent(TreeAgent):
         super().__init__(observation_space, action_space, exploration, seed, config, bounds)
         k = self.config.ensemble_trees
         dims = len(self.bounds[0])
-        self.members: list[SMDPAgent] = [self]
+        self.members: list[TreeAgent] = [self]
         self.members += [_Member(self, presplit_shifts(i, k, dims)) for i in range(1, k)]
         """Tree 0 (this agent) and the shifted trees."""
         self.terminals_seen = 0
@@ -383,6 +383,7 @@ class TreeEnsembleAgent(TreeAgent):
         decide = cfg.decision_steps if redecide and cfg.decision_steps is not None else cap
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
+        mark_collisions = cfg.collision_splits
         hold_exploration = cfg.hold_exploration and (
             cfg.hold_terminals is None
             or self.terminals_seen < cfg.hold_terminals
@@ -441,11 +442,13 @@ class TreeEnsembleAgent(TreeAgent):
                         self.targets += 1
                 splits = []
                 for i, m in enumerate(members):
+                    m.collision_end = x if collided and mark_collisions else None
                     if hold or (first_only and i > 0):
                         split = m._end_held_run(action, xs, rs, held[i], x, terminated)
                     else:
                         bootstrap = 0.0 if terminated else max(m.q[nxt[i]])
                         split = m._end_epoch(leaves[i], action, xs, rs, bootstrap, x, terminated)
+                    m.collision_end = None
                     splits.append(split)
                 if not hold and changed:  # a leaf crossing (hold_crossings)
                     self.crossing_steps += len(rs)

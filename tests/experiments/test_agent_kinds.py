@@ -400,3 +400,32 @@ def test_bad_ensemble_decisions_name_the_file_and_field(
     """Part 13's option in a strategy table: every bad value is refused by name."""
     message = _refusal({"name": "trees", "preset": "general", "config": config})
     assert defect in message, message
+
+
+@pytest.mark.parametrize(
+    ("strategy", "defect"),
+    [
+        (
+            {"name": "cuts", "config": {"collision_splits": True}},
+            "collision_splits = True needs planning = 'sweep'",
+        ),
+        (
+            {"name": "cuts", "preset": "general", "config": {"collision_splits": 1}},
+            "collision_splits: expected true or false, got 1",
+        ),
+        (
+            {"name": "cuts", "preset": "general", "config": {"collision_splits": "yes"}},
+            "collision_splits: expected true or false, got 'yes'",
+        ),
+        (
+            {"name": "cuts", "preset": "general", "config": {"collision_splits": None}},
+            "collision_splits: expected true or false, got None",
+        ),
+    ],
+)
+def test_bad_collision_splits_name_the_file_and_field(
+    strategy: dict[str, Any], defect: str
+) -> None:
+    """Part 14's option in a strategy table: every bad value is refused by name."""
+    message = _refusal(strategy)
+    assert defect in message, message
