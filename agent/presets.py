@@ -26,8 +26,10 @@ can build it by name::
   has been bootstrap from ``q_init`` until 10 terminal epochs (part 10, "Novel ends"), and a
   discount of 0.999 instead of Table I's 0.99 with the measured unit kept at its 0.99 value
   (part 11, "A longer discount"), and novel ends that also stop after 100 episodes, for a task
-  whose episodes never terminate (part 12, "Tasks without terminal states"). It runs on
-  :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop, which that option needs.
+  whose episodes never terminate (part 12, "Tasks without terminal states"), and leaves cut
+  where one action's collided and free stored epochs part (part 14, "Collision splits"; an
+  env that reports no collisions runs as before). It runs on
+  :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop, which those options need.
 """
 
 from __future__ import annotations
@@ -95,7 +97,7 @@ GENERAL = Preset(
     "general",
     "one set of defaults for every task: measured units, a model over the leaves, sweeping, "
     "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals "
-    "or 100 episodes, gamma 0.999",
+    "or 100 episodes, gamma 0.999, collision splits",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -113,6 +115,7 @@ GENERAL = Preset(
         gamma=0.999,
         scale_horizon=100.0,
         novelty_episodes=100,
+        collision_splits=True,
     ),
     "adaptive+tabu",
 )
@@ -124,9 +127,10 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     10: {"novelty_cells": None, "novelty_terminals": 1},
     11: {"gamma": 0.99, "scale_horizon": None},
     12: {"novelty_episodes": None},
+    14: {"collision_splits": False},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
-before that part (docs/results.md, "A learner that is fast everywhere")."""
+before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none)."""
 
 
 def general_as_of(part: int) -> TreeConfig:

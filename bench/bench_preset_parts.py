@@ -36,6 +36,9 @@ PARTS: dict[int, str] = {
     "the tree it grows differs",
     12: "novelty_episodes: the novel ends also stop after 100 episodes; on these two tasks the "
     "10th terminal comes first, so the runs should be the same",
+    14: "collision_splits: after an epoch that ended on a collision, that (leaf, action)'s "
+    "stored epochs are searched for a separating cut, in Python; MountainCar reports no "
+    "collisions, so its runs should be the same, and on the maze the tree grown changes",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

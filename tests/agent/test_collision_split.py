@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from gymnasium import spaces
 
-from agent import TreeConfig, preset
+from agent import TreeConfig, general_as_of, preset
 from agent.collision_split import choose_collision_split
 from agent.exploration import make_exploration
 from agent.leaf_model import LeafModel
@@ -211,3 +211,17 @@ def test_every_tree_of_an_ensemble_cuts_its_own_leaves() -> None:
     assert any(0.4 < c < 0.6 for c in cuts if c == c)
     assert second.model is not None
     assert any(any(second.model.collisions(leaf, 0)[1]) for leaf in second.partition.leaves())
+
+
+def test_the_general_preset_runs_classic_control_as_part_13_did() -> None:
+    # CartPole reports no collisions: part 14's preset takes part 13's run, bit for bit
+    env = gym.make("CartPole-v1")
+    runs = []
+    for config in (preset("general").config, general_as_of(13)):
+        agent = tree_agent_class(config)(
+            env.observation_space, env.action_space, "adaptive+tabu", 5, config
+        )
+        history = agent.learn(env, 15, reset_seed=5)
+        runs.append(([h.episode_return for h in history], agent.q, agent.n_leaves))
+    assert preset("general").config.collision_splits is True
+    assert runs[0] == runs[1]

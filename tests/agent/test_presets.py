@@ -43,6 +43,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"novelty_cells", "novelty_terminals"}  # issue 9, part 10
     others |= {"gamma", "scale_horizon"}  # issue 9, part 11
     others |= {"novelty_episodes"}  # issue 9, part 12
+    others |= {"collision_splits"}  # issue 9, part 14
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -52,6 +53,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert (general.novelty_cells, general.novelty_terminals) == (64, 10)  # part 10 ("Novel ends")
     assert (general.gamma, general.scale_horizon) == (0.999, 100.0)  # part 11 ("A longer discount")
     assert general.novelty_episodes == 100  # part 12 ("Tasks without terminal states")
+    assert general.collision_splits is True  # part 14 ("Collision splits")
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -118,6 +120,19 @@ def test_each_part_sets_the_preset_against_the_part_before(
     assert data["experiment"]["seed"] == first_seed + offset
 
 
+@pytest.mark.parametrize("kind", ["mazes", "paper"])
+def test_part14_comparisons_set_the_preset_against_part_13s(kind: str) -> None:
+    """Part 14 (collision splits) runs where collisions happen: classic control reports none,
+    so there both arms would be one run (tests/agent/test_collision_split.py)."""
+    data = tomllib.loads((EXPERIMENT_DIR / f"collision_splits_{kind}.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    old = by_name["general-part13"]
+    assert old["exploration"] == preset("general").exploration
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(13)
+    assert data["experiment"]["seed"] == {"mazes": 14102, "paper": 14103}[kind]
+
+
 @pytest.mark.parametrize("kind", ["classic", "mazes"])
 def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) -> None:
     data = tomllib.loads((EXPERIMENT_DIR / f"model_split_from_terminal_{kind}.toml").read_text())
@@ -130,10 +145,15 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(12) == now
-    assert general_as_of(11) == dataclasses.replace(now, novelty_episodes=None)
+    assert general_as_of(14) == now
+    assert (
+        general_as_of(13) == general_as_of(12) == dataclasses.replace(now, collision_splits=False)
+    )
+    assert general_as_of(11) == dataclasses.replace(
+        now, novelty_episodes=None, collision_splits=False
+    )
     assert general_as_of(10) == dataclasses.replace(
-        now, gamma=0.99, scale_horizon=None, novelty_episodes=None
+        now, gamma=0.99, scale_horizon=None, novelty_episodes=None, collision_splits=False
     )
     assert general_as_of(9).novelty_cells is None
     assert general_as_of(9).gamma == 0.99
