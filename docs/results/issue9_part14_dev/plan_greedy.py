@@ -23,22 +23,11 @@ import numpy as np
 
 from agent import preset
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from local_greedy import greedy  # beside this file; k = 0 is ``predict``
+
 OUT = Path(__file__).with_name("plan_greedy.jsonl")
 PASSES = 500
-
-
-def greedy(agent: Any, env: gym.Env, seeds: list[int]) -> float:
-    """Mean return of greedy episodes from the given reset seeds."""
-    returns = []
-    for seed in seeds:
-        obs, _ = env.reset(seed=seed)
-        total, done = 0.0, False
-        while not done:
-            obs, reward, terminated, truncated, _ = env.step(agent.predict(obs))
-            total += float(reward)
-            done = terminated or truncated
-        returns.append(total)
-    return float(np.mean(returns))
 
 
 def converge(agent: Any) -> tuple[int, float, int]:
@@ -63,9 +52,9 @@ def main(task: str, seed: int) -> None:
     agent.learn(env, 1000, reset_seed=seed)
     cpu = time.process_time() - start
     seeds = [1_000_000 + 1000 * seed + i for i in range(20)]
-    trained = greedy(agent, env, seeds)
+    trained = greedy(agent, env, seeds, 0)
     passes, largest, flipped = converge(agent)
-    planned = greedy(agent, env, seeds)
+    planned = greedy(agent, env, seeds, 0)
     record = {
         "task": task,
         "seed": seed,
