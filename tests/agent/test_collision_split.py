@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import json
 from pathlib import Path
 from typing import Any
 
@@ -225,3 +226,22 @@ def test_the_general_preset_runs_classic_control_as_part_13_did() -> None:
         runs.append(([h.episode_return for h in history], agent.q, agent.n_leaves))
     assert preset("general").config.collision_splits is True
     assert runs[0] == runs[1]
+
+
+@pytest.mark.parametrize("mark", [False, 1, "yes", None, [True]])
+def test_a_tampered_mark_in_an_agent_file_is_refused_naming_the_file(
+    tmp_path: Path, mark: Any
+) -> None:
+    path = _train(POST, 20).save(tmp_path / "post.npz")
+    with np.load(path, allow_pickle=False) as data:
+        arrays = {name: data[name].copy() for name in data.files}
+    meta = json.loads(arrays.pop("metadata").tobytes())
+    marked = [
+        entry for _, rs in meta["learner"]["model"]["records"] for entry in rs if len(entry) == 6
+    ]
+    assert marked  # the file holds collision marks to tamper with
+    marked[0][5] = mark
+    bad = tmp_path / "tampered.npz"
+    np.savez(bad, metadata=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **arrays)
+    with pytest.raises(ValueError, match=r"tampered\.npz.*collision mark"):
+        TreeAgent.load(bad)
