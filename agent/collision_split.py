@@ -47,10 +47,11 @@ def choose_collision_split(
         low, high: the leaf's box (``(d,)``).
         min_width: ``(d,)`` narrowest child allowed per dimension.
     """
-    n, dims = firsts.shape
+    n = len(collided)
     bad = int(collided.sum())
     if n < 2 or bad in (0, n):
         return None
+    dims = firsts.shape[1]
     best: tuple[int, float, int, float] | None = None
     best_errors = min(bad, n - bad)  # a cut must misplace fewer epochs than no cut
     sizes = np.arange(1, n)

@@ -66,8 +66,6 @@ class TreeAgent(SMDPAgent):
         if not partition.may_split():
             return False
         firsts, collided = self.model.collisions(leaf, action)  # type: ignore[union-attr]
-        if len(firsts) < 2:
-            return False
         low, high, _, min_width = partition.split_box(leaf)
         choice = choose_collision_split(
             np.asarray(firsts, dtype=np.float64),

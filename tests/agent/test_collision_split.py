@@ -245,3 +245,10 @@ def test_a_tampered_mark_in_an_agent_file_is_refused_naming_the_file(
     np.savez(bad, metadata=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **arrays)
     with pytest.raises(ValueError, match=r"tampered\.npz.*collision mark"):
         TreeAgent.load(bad)
+
+
+def test_no_stored_epochs_is_no_split() -> None:
+    empty = choose_collision_split(
+        np.asarray([], dtype=np.float64), np.asarray([], dtype=np.bool_), *BOX
+    )
+    assert empty is None
