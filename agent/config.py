@@ -21,6 +21,9 @@ ThresholdUnits = Literal["reward", "scale"]
 Planning = Literal["none", "sweep"]
 ScaleRule = Literal["reward_median", "return_std", "return_iqr"]
 
+MAX_TABLE = 1 << 16
+"""Most cells ``TreeConfig.table_cells`` may allow (the tree's presplit limit, 2^16 leaves)."""
+
 
 @dataclass(frozen=True)
 class TreeConfig:
@@ -117,6 +120,15 @@ class TreeConfig:
     2^d leaves, as ``initial_depth = d`` (added to ``initial_depth``). It gives the tree the
     sign of every input from the start, where a task's values are uniform until its goal is
     first reached (Acrobot) and the split test alone never leaves the root."""
+    table_cells: int | None = None
+    """A table for integer inputs (beyond the paper): when the observation box is integer-typed
+    (:func:`agent.spaces.integer_inputs`: FrozenLake's, Taxi's or Blackjack's states through
+    :func:`agent.adapt_env`, a user's grid coordinates) and holds at most this many cells (the
+    product over its dimensions of the integers in each), the tree starts with one leaf per
+    cell, in place of ``initial_depth`` and ``presplit_each_dimension``. Such inputs are
+    already discrete: the split test would need about log2(n) splits of ``split_min_samples``
+    errors each to isolate one of n states. A box with more cells, or a float one, is
+    partitioned as before. None: off (the paper)."""
 
     leaves_per_terminal: int = 0
     """A leaf budget that grows with what the agent has reached (beyond the paper): until the
@@ -434,6 +446,14 @@ class TreeConfig:
             raise TypeError(
                 f"TreeConfig.presplit_each_dimension must be a bool, "
                 f"got {self.presplit_each_dimension!r}"
+            )
+        cells = self.table_cells
+        if cells is not None and (
+            isinstance(cells, bool) or not isinstance(cells, int) or not 1 <= cells <= MAX_TABLE
+        ):
+            raise ValueError(
+                f"TreeConfig.table_cells must be None or an int in [1, {MAX_TABLE:,}], "
+                f"got {cells!r}"
             )
         if self.ensemble_trees > 64:
             raise ValueError(

@@ -115,6 +115,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_bonus": (float, int),
     "initial_depth": int,
     "presplit_each_dimension": bool,
+    # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)
+    "table_cells": (int, type(None)),
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off
     "leaves_per_terminal": int,
     # matters only with the model (model_bonus), which turns the loop off
@@ -223,6 +225,7 @@ AGENT_ATTRIBUTES = {
     "model",
     "novelty",
     "q_init",
+    "integer_inputs",
 }
 AGENT_CLASSES: dict[type, tuple[type, set[str]]] = {
     TreeAgent: (PartitionTree, AGENT_ATTRIBUTES),
@@ -315,7 +318,7 @@ FINGERPRINTS = {
     "PartitionTree.record": "c6ca80ffc6949cf0",
     "PartitionTree._try_split": "47296a89935ec01a",
     "PartitionTree.may_split": "6e07498ec05bb032",
-    "PartitionTree.split_box": "2afccda95c78f738",
+    "PartitionTree.split_box": "bef2291ad37355c8",  # part 15: integer inputs (refused here)
     "PartitionTree.split_with_samples": "a42416998727ec06",
     "PartitionTree.split": "d41c976a347495ae",
     "UniformGrid.leaf_of": "d0472db7cca8f40e",
@@ -491,6 +494,8 @@ def ineligible_reason(agent: Any, env: Any) -> str | None:
         return "a measured reward unit or the model over the leaves (beyond the paper)"
     if agent.q_init != agent.config.q_init:
         return "an initial Q-bar other than TreeConfig.q_init (optimistic initialisation)"
+    if agent.integer_inputs:
+        return "integer inputs (an integer-typed observation box)"
     partition: Any = agent.partition
     if type(partition) is not partition_type:
         return f"partition {type(partition).__name__} is not {partition_type.__name__}"

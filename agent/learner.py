@@ -30,7 +30,7 @@ from agent.partition_tree import PartitionTree
 from agent.random_stream import UniformStream
 from agent.scale import ReturnScale, ReturnSpread, RewardScale
 from agent.smdp import epoch_discounts, epoch_returns, leaf_update
-from agent.spaces import action_count, observation_bounds
+from agent.spaces import action_count, integer_inputs, observation_bounds
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -88,6 +88,8 @@ class SMDPAgent:
         self.observation_space = observation_space
         self.action_space = action_space
         self.bounds = (low, high)
+        self.integer_inputs = integer_inputs(observation_space)
+        """Whether the inputs are integer cells (:func:`agent.spaces.integer_inputs`)."""
         self.config = config if config is not None else TreeConfig()
         if not isinstance(self.config, TreeConfig):
             raise TypeError(f"config must be a TreeConfig, got {type(self.config).__name__}")
@@ -704,7 +706,9 @@ class SMDPAgent:
             )
             if saved.partition_arrays:
                 restore = type(agent.partition).from_arrays  # type: ignore[attr-defined]
-                agent.partition = restore(saved.partition_arrays, saved.partition, saved.config)
+                agent.partition = restore(
+                    saved.partition_arrays, saved.partition, saved.config, agent.integer_inputs
+                )
                 if agent._track_scale and hasattr(agent.partition, "scale"):
                     agent.partition.scale = agent.scale
             strategy.load_state_dict(saved.exploration_state)

@@ -13,6 +13,10 @@ the root is unbounded there, and wherever eq. (12)'s range_i, the minimum leaf w
 clipping of eq. (13)'s split point need a width, the leaf's box is cut to the smallest and
 largest value that dimension has shown in any stored state-error pair so far (``seen_bounds``).
 Bounded dimensions use their declared bounds, as before.
+
+Integer inputs (``integer=True``: an integer-typed observation box, :mod:`agent.spaces`) are
+cells ``[k - 0.5, k + 0.5]``: no child is narrower than one cell, and with
+``TreeConfig.table_cells`` a box of few enough cells starts as a table, one leaf per cell.
 """
 
 from __future__ import annotations
@@ -38,9 +42,13 @@ class PartitionTree:
     kind = "tree"
     records_errors = True
 
-    def __init__(self, low: list[float], high: list[float], config: TreeConfig) -> None:
+    def __init__(
+        self, low: list[float], high: list[float], config: TreeConfig, integer: bool = False
+    ) -> None:
         self.config = config
         self.dims = len(low)
+        self.integer = integer
+        """Whether the inputs are integers, each the cell ``[k - 0.5, k + 0.5]``."""
         self.root_low = [float(v) for v in low]
         self.root_high = [float(v) for v in high]
         self._unbounded = [
@@ -64,6 +72,11 @@ class PartitionTree:
         self._depth: list[int] = [0]
         self._buffers: dict[int, ErrorBuffer] = {}
         self.n_leaves = 1
+        cuts = self._table_cuts()
+        if cuts is not None:
+            for d, points in enumerate(cuts):
+                self._cut_every_leaf(d, points)
+            return
         depth = config.initial_depth + (self.dims if config.presplit_each_dimension else 0)
         if depth > 16:
             raise ValueError(
@@ -101,6 +114,40 @@ class PartitionTree:
                 else:
                     continue
                 self.split(leaf, d, point)
+
+    def _table_cuts(self) -> list[list[float]] | None:
+        """``TreeConfig.table_cells``: per dimension, the half-integers strictly inside the root
+        box, when the inputs are integers, the box is bounded and it holds at most
+        ``table_cells`` cells; None otherwise (no table)."""
+        budget = self.config.table_cells
+        if budget is None or not self.integer or any(self._unbounded):
+            return None
+        cuts: list[list[float]] = []
+        cells = 1
+        for low, high in zip(self.root_low, self.root_high, strict=True):
+            first, last = math.floor(low + 0.5) + 0.5, math.ceil(high - 0.5) - 0.5
+            if first <= low:
+                first += 1.0
+            if last >= high:
+                last -= 1.0
+            count = max(0, int(last - first) + 1)
+            cells *= count + 1
+            if cells > budget:
+                return None
+            cuts.append([first + i for i in range(count)])
+        return cuts
+
+    def _cut_every_leaf(self, dim: int, points: list[float]) -> None:
+        """Split every leaf at each of ``points`` along ``dim``, halving the points at each
+        level (the table's depth grows as log2 of its cells)."""
+        pending = [(leaf, points) for leaf in self.leaves()]
+        while pending:
+            leaf, cut = pending.pop()
+            if not cut:
+                continue
+            middle = len(cut) // 2
+            left, right = self.split(leaf, dim, cut[middle])
+            pending += [(left, cut[:middle]), (right, cut[middle + 1 :])]
 
     def _presplit_point(self, dim: int, low: float, high: float) -> float:
         """Where the presplit cuts a bounded dimension: the midpoint (a shifted tree of
@@ -192,7 +239,10 @@ class PartitionTree:
         root_width = self._root_width
         if self._grown:
             low, high, root_width = self._grown_box(low, high)
-        return low, high, root_width, root_width * self.config.min_leaf_fraction
+        min_width = root_width * self.config.min_leaf_fraction
+        if self.integer:
+            min_width = np.maximum(min_width, 1.0)  # a child holds at least one integer
+        return low, high, root_width, min_width
 
     def split_with_samples(self, leaf: int, dim: int, value: float) -> tuple[int, int]:
         """:meth:`split`, handing the leaf's state-error pairs to the child that holds each
@@ -338,10 +388,15 @@ class PartitionTree:
 
     @classmethod
     def from_arrays(
-        cls, arrays: dict[str, NDArray[Any]], meta: dict[str, Any], config: TreeConfig
+        cls,
+        arrays: dict[str, NDArray[Any]],
+        meta: dict[str, Any],
+        config: TreeConfig,
+        integer: bool = False,
     ) -> PartitionTree:
-        """Inverse of :meth:`to_arrays`."""
-        tree = cls(meta["root_low"], meta["root_high"], config)
+        """Inverse of :meth:`to_arrays` (``integer``: the observation box's, which the file
+        keeps as its dtype)."""
+        tree = cls(meta["root_low"], meta["root_high"], config, integer)
         if "seen_low" in arrays:
             tree._seen_low = [float(v) for v in arrays["seen_low"]]
             tree._seen_high = [float(v) for v in arrays["seen_high"]]
@@ -376,8 +431,10 @@ class GatedPartitionTree(PartitionTree):
     (``error_buffer="clear"``), so the leaf is tested again on fresh errors.
     """
 
-    def __init__(self, low: list[float], high: list[float], config: TreeConfig) -> None:
-        super().__init__(low, high, config)
+    def __init__(
+        self, low: list[float], high: list[float], config: TreeConfig, integer: bool = False
+    ) -> None:
+        super().__init__(low, high, config, integer)
         self.initial_leaves = self.n_leaves
         """Leaves after the presplit (the budget's base)."""
         self.terminals = 0

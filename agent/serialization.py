@@ -60,6 +60,9 @@ A tree of 4,096 leaves (the default cap) with full error buffers takes about 50 
 MAX_METADATA_BYTES = 64 << 20
 """Largest ``metadata`` entry (its JSON text as stored)."""
 
+OBSERVATION_DTYPES = ("float32", "float64", "int8", "int16", "int32", "int64")
+"""The observation box dtypes a file may name (an integer one: inputs are cells,
+:mod:`agent.spaces`)."""
 MAX_DIMS = 64
 """Most observation dimensions an agent file may declare."""
 
@@ -634,7 +637,12 @@ def _check_metadata(meta: Any, fail: Callable[[str], ValueError]) -> None:
         f"observation_space has {dims} lows and {len(high)} highs (1 to {MAX_DIMS} dimensions)",
     )
     need(all(a <= b for a, b in zip(low, high, strict=True)), "observation_space has low > high")
-    need(box["dtype"] in ("float32", "float64"), f"observation_space dtype {box['dtype']!r}")
+    need(box["dtype"] in OBSERVATION_DTYPES, f"observation_space dtype {box['dtype']!r}")
+    need(
+        box["dtype"] in ("float32", "float64")
+        or all(math.isfinite(v) and float(v).is_integer() for v in (*low, *high)),
+        f"observation_space of dtype {box['dtype']} has bounds that are not integers",
+    )
     need(
         _integer(meta["n_actions"]) and 1 <= meta["n_actions"] <= MAX_ACTIONS,
         f"n_actions must be an integer in [1, {MAX_ACTIONS}], got {meta['n_actions']!r}",

@@ -1,9 +1,13 @@
 """Checks of the spaces an agent is built for: a Box observation, Discrete actions.
 
+An integer-typed Box (:func:`integer_inputs`) holds cells: the integer k covers
+``[k - 0.5, k + 0.5]``, so its box is the declared bounds widened by a half on each side, and a
+split halfway between two integers separates them.
+
 A dimension whose bound is infinite, or beyond :data:`UNBOUNDED_MAGNITUDE` in magnitude (some
-envs write ``float32`` max for "unbounded"), is unbounded. Agents whose partition can grow its
-bounds from the data (the tree, ``allow_unbounded=True``) get ``-inf`` / ``inf`` there; the
-others refuse it with a message that says to pass ``bounds``.
+envs write ``float32`` max for "unbounded"), or at its integer dtype's extreme, is unbounded.
+Agents whose partition can grow its bounds from the data (the tree, ``allow_unbounded=True``)
+get ``-inf`` / ``inf`` there; the others refuse it with a message that says to pass ``bounds``.
 """
 
 from __future__ import annotations
@@ -44,6 +48,10 @@ def observation_bounds(
         low = np.asarray(observation_space.low, dtype=np.float64)
         high = np.asarray(observation_space.high, dtype=np.float64)
         source = "observation_space"
+        if integer_inputs(observation_space):
+            limits = np.iinfo(observation_space.dtype)  # the dtype's extremes: unbounded
+            low = np.where(low <= limits.min, -np.inf, low - 0.5)
+            high = np.where(high >= limits.max, np.inf, high + 0.5)
     else:
         if len(bounds) != 2:
             raise ValueError(f"bounds must be (low, high), got {bounds!r}")
@@ -69,6 +77,15 @@ def observation_bounds(
             f"{source} must have low < high, got low={low.tolist()}, high={high.tolist()}"
         )
     return low.tolist(), high.tolist()
+
+
+def integer_inputs(observation_space: spaces.Space) -> bool:
+    """Whether the observation is a Box of an integer dtype: its coordinates are cells
+    (module docstring), as :func:`agent.adapt_env` gives a Discrete, MultiDiscrete or
+    MultiBinary observation, or a Tuple or Dict of those."""
+    return isinstance(observation_space, spaces.Box) and bool(
+        np.issubdtype(observation_space.dtype, np.integer)
+    )
 
 
 def squash(value: float) -> float:

@@ -5,14 +5,17 @@ The agents partition a box of inputs and choose among ``n`` actions (:mod:`agent
 task with another observation space (FrozenLake's ``Discrete(16)``, Blackjack's ``Tuple``) or a
 continuous action (Pendulum's torque) is brought to them by a documented rule, not refused:
 
-* :class:`BoxObservation`: every component becomes float coordinates of one flat Box. A
-  ``Discrete(n, start)`` is its index, one coordinate in ``[start - 0.5, start + n - 0.5]``
-  (a split halfway between two indices separates them); ``MultiDiscrete`` and ``MultiBinary``
-  give one such coordinate per entry; a ``Box`` of any shape is flattened with its bounds; a
-  ``Tuple`` or ``Dict`` concatenates its parts (a ``Dict`` in its key order). An index keeps
-  the tree's inputs few (one per component, where ``gymnasium.wrappers.FlattenObservation``
-  would one-hot ``Discrete(500)`` into 500 inputs); the tree isolates an index in about
-  ``log2(n)`` splits.
+* :class:`BoxObservation`: every component becomes coordinates of one flat Box. A
+  ``Discrete(n, start)`` is its index, one coordinate; ``MultiDiscrete`` and ``MultiBinary``
+  give one index per entry; a ``Box`` of any shape is flattened with its bounds; a ``Tuple``
+  or ``Dict`` concatenates its parts (a ``Dict`` in its key order). When every part is
+  discrete the Box is integer-typed, ``[start, start + n - 1]`` per index, and the agents read
+  each integer as a cell ``[k - 0.5, k + 0.5]`` (:mod:`agent.spaces`), so a tree can start
+  as a table of them (``TreeConfig.table_cells``). When a Box part is mixed in, the Box is
+  float and an index is one coordinate in ``[start - 0.5, start + n - 0.5]`` (a split halfway
+  between two indices separates them). An index keeps the tree's inputs few (one per
+  component, where ``gymnasium.wrappers.FlattenObservation`` would one-hot ``Discrete(500)``
+  into 500 inputs).
 * :class:`DiscreteActions`: ``Discrete(m)`` over a grid of the task's actions. A ``Box`` with
   finite bounds gets ``bins`` evenly spaced values per dimension, both bounds included (with
   an odd ``bins`` the middle one is the centre, 0 for a symmetric torque; a dimension whose
@@ -91,8 +94,20 @@ def needs_box_observation(space: spaces.Space) -> bool:
     return not (isinstance(space, spaces.Box) and len(space.shape) == 1)
 
 
+def _all_discrete(space: spaces.Space) -> bool:
+    """Whether every part of ``space`` is Discrete, MultiDiscrete or MultiBinary."""
+    if isinstance(space, spaces.Discrete | spaces.MultiDiscrete | spaces.MultiBinary):
+        return True
+    if isinstance(space, spaces.Tuple):
+        return all(_all_discrete(sub) for sub in space.spaces)
+    if isinstance(space, spaces.Dict):
+        return all(_all_discrete(sub) for sub in space.spaces.values())
+    return False
+
+
 class BoxObservation(gym.ObservationWrapper[np.ndarray, Any, Any], RecordConstructorArgs):
-    """Any observation as the float coordinates of one flat Box (module docstring's rule)."""
+    """Any observation as the coordinates of one flat Box (module docstring's rule): integer
+    indices when every part is discrete, floats otherwise."""
 
     def __init__(self, env: gym.Env[Any, Any]) -> None:
         RecordConstructorArgs.__init__(self)
@@ -103,11 +118,17 @@ class BoxObservation(gym.ObservationWrapper[np.ndarray, Any, Any], RecordConstru
         high = np.concatenate([p[1] for p in parts]) if parts else np.zeros(0)
         if low.size == 0:
             raise ValueError(f"BoxObservation: observation_space {self._source!r} has no entries")
-        self.observation_space = spaces.Box(low, high, dtype=np.float64)
+        self._integer = _all_discrete(self._source)
+        if self._integer:
+            low, high = (low + 0.5).astype(np.int64), (high - 0.5).astype(np.int64)
+            self.observation_space = spaces.Box(low, high, dtype=np.int64)
+        else:
+            self.observation_space = spaces.Box(low, high, dtype=np.float64)
 
     def observation(self, observation: Any) -> np.ndarray:
         """The observation's coordinates, concatenated."""
-        return np.concatenate(_coordinates(self._source, observation))
+        coordinates = np.concatenate(_coordinates(self._source, observation))
+        return coordinates.astype(np.int64) if self._integer else coordinates
 
 
 def _bins_per_dimension(bins: Any, dims: int) -> list[int]:

@@ -29,8 +29,8 @@ class TreeAgent(SMDPAgent):
 
     def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
         if self.config.leaves_per_terminal > 0:
-            return GatedPartitionTree(low, high, self.config)
-        return PartitionTree(low, high, self.config)
+            return GatedPartitionTree(low, high, self.config, self.integer_inputs)
+        return PartitionTree(low, high, self.config, self.integer_inputs)
 
     def _end_epoch(
         self,

@@ -59,10 +59,15 @@ class ShiftedPartitionTree(PartitionTree):
     """A tree whose presplit points are moved from the midpoints by ``shifts`` (half-widths)."""
 
     def __init__(
-        self, low: list[float], high: list[float], config: TreeConfig, shifts: list[float]
+        self,
+        low: list[float],
+        high: list[float],
+        config: TreeConfig,
+        shifts: list[float],
+        integer: bool = False,
     ) -> None:
         self.shifts = list(shifts)
-        super().__init__(low, high, config)
+        super().__init__(low, high, config, integer)
 
     def _presplit_point(self, dim: int, low: float, high: float) -> float:
         return 0.5 * (low + high) + self.shifts[dim] * 0.5 * (high - low)
@@ -86,7 +91,7 @@ class _Member(TreeAgent):
         )
 
     def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
-        return ShiftedPartitionTree(low, high, self.config, self._shifts)
+        return ShiftedPartitionTree(low, high, self.config, self._shifts, self.integer_inputs)
 
 
 class TreeEnsembleAgent(TreeAgent):

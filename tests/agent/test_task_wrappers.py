@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 from typing import Any
 
@@ -12,7 +13,9 @@ from gymnasium import spaces
 from gymnasium.utils.env_checker import check_env
 
 from agent import BoxObservation, DiscreteActions, TreeAgent, adapt_env, preset
+from agent.spaces import observation_bounds
 from agent.task_wrappers import MAX_ACTIONS
+from agent.tree_ensemble import tree_agent_class
 
 
 class SpaceEnv(gym.Env[Any, Any]):
@@ -40,11 +43,29 @@ class SpaceEnv(gym.Env[Any, Any]):
         return self.observation_space.sample(), float(done), done, False, {}
 
 
-def test_discrete_observation_is_its_index_between_half_integers() -> None:
+def test_discrete_observation_is_its_index_in_an_integer_box() -> None:
     env = BoxObservation(SpaceEnv(spaces.Discrete(5, start=2), spaces.Discrete(2)))
-    assert env.observation_space.low.tolist() == [1.5]
-    assert env.observation_space.high.tolist() == [6.5]
-    assert env.observation(4).tolist() == [4.0]
+    assert env.observation_space.dtype == np.int64
+    assert env.observation_space.low.tolist() == [2]
+    assert env.observation_space.high.tolist() == [6]
+    value = env.observation(4)
+    assert value.tolist() == [4]
+    assert value.dtype == np.int64
+    assert env.observation_space.contains(value)
+    # the agents read each integer as the cell [k - 0.5, k + 0.5]
+    assert observation_bounds(env.observation_space, None) == ([1.5], [6.5])
+
+
+def test_discrete_parts_only_give_an_integer_box_and_a_box_part_a_float_one() -> None:
+    parts = spaces.Tuple((spaces.Discrete(32), spaces.Discrete(11), spaces.MultiBinary(1)))
+    env = BoxObservation(SpaceEnv(parts, spaces.Discrete(2)))
+    assert env.observation_space.dtype == np.int64
+    assert env.observation_space.high.tolist() == [31, 10, 1]
+    assert env.observation((31, 0, np.array([1]))).tolist() == [31, 0, 1]
+    mixed = spaces.Tuple((spaces.Discrete(3), spaces.Box(-1.0, 1.0, (1,))))
+    env = BoxObservation(SpaceEnv(mixed, spaces.Discrete(2)))
+    assert env.observation_space.dtype == np.float64
+    assert env.observation_space.low.tolist() == [-0.5, -1.0]
 
 
 def test_tuple_and_dict_observations_concatenate_in_order() -> None:
@@ -61,8 +82,8 @@ def test_tuple_and_dict_observations_concatenate_in_order() -> None:
     env = BoxObservation(SpaceEnv(dict_space, spaces.Discrete(2)))
     keys = list(dict_space.spaces)  # gymnasium sorts a dict's keys: a, then b
     assert keys == ["a", "b"]
-    assert env.observation({"a": 2, "b": np.array([1, 0])}).tolist() == [2.0, 1.0, 0.0]
-    assert env.observation_space.high.tolist() == [2.5, 1.5, 1.5]
+    assert env.observation({"a": 2, "b": np.array([1, 0])}).tolist() == [2, 1, 0]
+    assert env.observation_space.high.tolist() == [2, 1, 1]
 
 
 def test_box_actions_become_a_grid_with_both_bounds_and_the_centre() -> None:
@@ -129,10 +150,15 @@ def test_adapted_gymnasium_tasks_pass_the_checker_and_a_tree_learns_on_them(task
 
 
 def test_a_tree_learns_cliff_walking_through_the_index() -> None:
-    """CliffWalking's 48 cells as one index input: after 100 episodes the greedy walk reaches
-    the goal without falling (-13 is the edge path, -17 the safe one; a fall costs -100)."""
+    """CliffWalking's 48 cells as one index input, split by the tree's own tests (no table):
+    after 100 episodes the greedy walk reaches the goal without falling (-13 is the edge path,
+    -17 the safe one; a fall costs -100)."""
     env = adapt_env(gym.make("CliffWalking-v1"))
-    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
+    config = dataclasses.replace(preset("general").config, table_cells=None)
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, "adaptive+tabu", 0, config
+    )
+    assert agent.n_leaves == 2
     agent.learn(env, 100, reset_seed=0)
     obs, _ = env.reset(seed=0)
     total, done = 0.0, False

@@ -429,3 +429,22 @@ def test_bad_collision_splits_name_the_file_and_field(
     """Part 14's option in a strategy table: every bad value is refused by name."""
     message = _refusal(strategy)
     assert defect in message, message
+
+
+@pytest.mark.parametrize(
+    ("value", "defect"),
+    [
+        (0, "table_cells must be None or an int in [1, 65,536], got 0"),
+        (-3, "got -3"),
+        (65537, "got 65537"),
+        (2.5, "got 2.5"),
+        (True, "got true"),
+        ("4096", "got '4096'"),
+        ([16], "got [16]"),
+    ],
+)
+def test_bad_table_cells_name_the_file_and_field(value: Any, defect: str) -> None:
+    """Part 15's option in a strategy table: every bad value is refused by name."""
+    message = _refusal({"name": "table", "preset": "general", "config": {"table_cells": value}})
+    assert "table_cells" in message, message
+    assert defect in message, message
