@@ -28,7 +28,9 @@ can build it by name::
   (part 11, "A longer discount"), and novel ends that also stop after 100 episodes, for a task
   whose episodes never terminate (part 12, "Tasks without terminal states"), and leaves cut
   where one action's collided and free stored epochs part (part 14, "Collision splits"; an
-  env that reports no collisions runs as before). It runs on
+  env that reports no collisions runs as before), and a tree that starts as a table of the
+  inputs when they are integers and the cells fit the leaf cap (part 15, "A table for integer
+  inputs"; float inputs run as before). It runs on
   :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop, which those options need.
 """
 
@@ -97,7 +99,7 @@ GENERAL = Preset(
     "general",
     "one set of defaults for every task: measured units, a model over the leaves, sweeping, "
     "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals "
-    "or 100 episodes, gamma 0.999, collision splits",
+    "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -116,6 +118,7 @@ GENERAL = Preset(
         scale_horizon=100.0,
         novelty_episodes=100,
         collision_splits=True,
+        table_cells=16384,
     ),
     "adaptive+tabu",
 )
@@ -128,6 +131,7 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     11: {"gamma": 0.99, "scale_horizon": None},
     12: {"novelty_episodes": None},
     14: {"collision_splits": False},
+    15: {"table_cells": None},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none)."""

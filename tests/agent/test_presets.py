@@ -44,6 +44,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"gamma", "scale_horizon"}  # issue 9, part 11
     others |= {"novelty_episodes"}  # issue 9, part 12
     others |= {"collision_splits"}  # issue 9, part 14
+    others |= {"table_cells"}  # issue 9, part 15
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -54,6 +55,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert (general.gamma, general.scale_horizon) == (0.999, 100.0)  # part 11 ("A longer discount")
     assert general.novelty_episodes == 100  # part 12 ("Tasks without terminal states")
     assert general.collision_splits is True  # part 14 ("Collision splits")
+    assert general.table_cells == general.max_leaves  # part 15 ("A table for integer inputs")
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -145,15 +147,13 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(14) == now
-    assert (
-        general_as_of(13) == general_as_of(12) == dataclasses.replace(now, collision_splits=False)
-    )
-    assert general_as_of(11) == dataclasses.replace(
-        now, novelty_episodes=None, collision_splits=False
-    )
+    assert general_as_of(15) == now
+    assert general_as_of(14) == dataclasses.replace(now, table_cells=None)
+    before = dataclasses.replace(now, table_cells=None, collision_splits=False)
+    assert general_as_of(13) == general_as_of(12) == before
+    assert general_as_of(11) == dataclasses.replace(before, novelty_episodes=None)
     assert general_as_of(10) == dataclasses.replace(
-        now, gamma=0.99, scale_horizon=None, novelty_episodes=None, collision_splits=False
+        before, gamma=0.99, scale_horizon=None, novelty_episodes=None
     )
     assert general_as_of(9).novelty_cells is None
     assert general_as_of(9).gamma == 0.99
