@@ -5,9 +5,10 @@ stored epoch, the undoing of the blends of ``model_lambda_episodes`` episodes ba
 sweep, at every episode's end. This prints CPU seconds per 1,000 environment steps of the
 general preset with the blend (lambda 0.9, undone after 8 episodes, bounded below: the
 ``recent8-bound`` of ``experiments/lambda_recent_dev.toml``) and of the preset itself, on
-MountainCar-v0 and on the ``paper`` maze, in interleaved rounds (CPU time of this process, the
-agent built before the clock starts), and their ratio (median over rounds, with its range).
-The two agents learn differently, so they take different steps: the ratio is per step.
+MountainCar-v0, on the ``paper`` maze and on Taxi-v4, in interleaved rounds (CPU time of this
+process, the agent built before the clock starts), and their ratio (median over rounds, with
+its range). The two agents learn differently, so they take different steps: the ratio is per
+step.
 
     python bench/bench_general.py                 # 3 rounds, about 3 minutes
     python bench/bench_general.py --rounds 1 --episodes 50
@@ -25,19 +26,20 @@ from typing import Any
 import gymnasium as gym
 
 import bullet_maze  # noqa: F401 (registers BulletMaze-v0)
-from agent import TreeConfig, preset
+from agent import TreeConfig, adapt_env, preset
 from agent.tree_ensemble import tree_agent_class
 
 TASKS: dict[str, dict[str, Any]] = {
     "MountainCar-v0": {},
     "BulletMaze-v0": {"maze": "paper", "max_episode_steps": 5000},
+    "Taxi-v4": {},  # integer inputs through agent.adapt_env (issue 9, part 15)
 }
 
 
 def learning_cost(task: str, config: TreeConfig, episodes: int, seed: int) -> tuple[float, int]:
     """CPU seconds and environment steps of ``episodes`` learning episodes of an agent with
     ``config`` and the general preset's strategy (built before the clock starts)."""
-    env = gym.make(task, **TASKS[task])
+    env = adapt_env(gym.make(task, **TASKS[task]))  # leaves a fitting task alone
     agent = tree_agent_class(config)(
         env.observation_space, env.action_space, preset("general").make_exploration(), seed, config
     )

@@ -3,11 +3,11 @@
 For part N, the general preset as it was after part N (``agent.general_as_of(N)``) against
 the preset after part N - 1 (the fields of ``agent.presets.GENERAL_CHANGES[N]`` at their
 earlier values): CPU seconds per 1,000 environment steps and per learning episode over
-``--episodes`` episodes, on MountainCar-v0 and on the ``paper`` maze, in interleaved rounds
-(agent and reset seed = the round; CPU time of this process, the agent built before the clock
-starts), and the ratios part N / part N - 1 (median over rounds, with their range). The two
-agents learn differently, so they take different steps; what each part changed is in
-:data:`PARTS`.
+``--episodes`` episodes, on MountainCar-v0, on the ``paper`` maze and on Taxi-v4, in
+interleaved rounds (agent and reset seed = the round; CPU time of this process, the agent
+built before the clock starts), and the ratios part N / part N - 1 (median over rounds, with
+their range). The two agents learn differently, so they take different steps; what each part
+changed is in :data:`PARTS`.
 
     python bench/bench_preset_parts.py --part 11          # 3 rounds, about a minute
     python bench/bench_preset_parts.py --part 9 --rounds 1 --episodes 100
@@ -39,6 +39,8 @@ PARTS: dict[int, str] = {
     14: "collision_splits: after an epoch that ended on a collision, that (leaf, action)'s "
     "stored epochs are searched for a separating cut, in Python; MountainCar reports no "
     "collisions, so its runs should be the same, and on the maze the tree grown changes",
+    15: "table_cells: Taxi's 500 integer states start as a table (built before the clock "
+    "starts); MountainCar and the maze have float inputs, so their runs should be the same",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 
