@@ -223,6 +223,14 @@ class TreeConfig:
     for an action that collides from one part of it and passes from the other. Needs the
     model. Runs on :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop. An env that reports
     no collisions never triggers it. False: off."""
+    optimistic_untried: bool = False
+    """Optimism for untried actions (beyond the paper): an action never tried in a leaf or in
+    any leaf it was split from is valued at the largest return the rewards have paid inside
+    one epoch so far (eq. (9) without its bootstrap, over every input), when that is above
+    its Q-bar. It is R-max's optimism (Brafman and Tennenholtz 2002) with the bound measured
+    instead of known: ``q_init`` = 0 is optimistic only where rewards are at most 0, and on
+    FrozenLake, whose only reward is +1 at the goal, an untried action looked like the worst
+    there is. Until a positive return is paid nothing changes. False: off (the paper)."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -398,6 +406,10 @@ class TreeConfig:
             raise ValueError(
                 "TreeConfig.collision_splits = True needs planning = 'sweep' (it cuts between "
                 f"the model's stored epochs), got planning = {self.planning!r}"
+            )
+        if not isinstance(self.optimistic_untried, bool):
+            raise ValueError(
+                f"TreeConfig.optimistic_untried must be a bool, got {self.optimistic_untried!r}"
             )
         self._check_novelty()
         if self.decision_on_failure and self.decision_steps is None:

@@ -115,6 +115,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_bonus": (float, int),
     "initial_depth": int,
     "presplit_each_dimension": bool,
+    # the kernel keeps no record of untried actions: True turns the loop off (ineligible_reason)
+    "optimistic_untried": bool,
     # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)
     "table_cells": (int, type(None)),
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off
@@ -226,6 +228,7 @@ AGENT_ATTRIBUTES = {
     "novelty",
     "q_init",
     "integer_inputs",
+    "optimism",
 }
 AGENT_CLASSES: dict[type, tuple[type, set[str]]] = {
     TreeAgent: (PartitionTree, AGENT_ATTRIBUTES),
@@ -496,6 +499,8 @@ def ineligible_reason(agent: Any, env: Any) -> str | None:
         return "an initial Q-bar other than TreeConfig.q_init (optimistic initialisation)"
     if agent.integer_inputs:
         return "integer inputs (an integer-typed observation box)"
+    if agent.config.optimistic_untried:
+        return "optimism for untried actions (TreeConfig.optimistic_untried)"
     partition: Any = agent.partition
     if type(partition) is not partition_type:
         return f"partition {type(partition).__name__} is not {partition_type.__name__}"

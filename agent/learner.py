@@ -25,6 +25,7 @@ from agent.inspection import LeafInfo, render_partition
 from agent.leaf_model import LeafModel
 from agent.model_split import choose_model_split
 from agent.novelty import NoveltyGrid
+from agent.optimism import UntriedOptimism
 from agent.partition import Partition
 from agent.partition_tree import PartitionTree
 from agent.random_stream import UniformStream
@@ -625,6 +626,9 @@ class SMDPAgent:
             terminals = getattr(self.partition, "terminals", None)
             if terminals is not None:
                 learner["gate"] = {"terminals": terminals}
+            optimism = getattr(self, "optimism", None)  # TreeConfig.optimistic_untried
+            if optimism is not None:
+                learner["optimism"] = optimism.state()
             seen = getattr(self, "terminals_seen", None)
             if seen is not None:
                 learner["loop"] = {
@@ -718,6 +722,16 @@ class SMDPAgent:
                 agent.scale.restore(learner["scale"])
             if "model" in learner and agent.model is not None:
                 agent.model = LeafModel.from_state(agent.n_actions, learner["model"], agent.q_init)
+            if "optimism" in learner:
+                if not agent.config.optimistic_untried:
+                    raise ValueError("an optimism state, but optimistic_untried is off")
+                setattr(  # noqa: B010 (a TreeAgent)
+                    agent,
+                    "optimism",
+                    UntriedOptimism.from_state(
+                        agent.n_actions, learner["optimism"], set(agent.partition.leaves())
+                    ),
+                )
             if "gate" in learner and hasattr(agent.partition, "terminals"):
                 terminals = learner["gate"].get("terminals")
                 if isinstance(terminals, bool) or not isinstance(terminals, int) or terminals < 0:

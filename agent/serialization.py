@@ -708,12 +708,13 @@ def _check_metadata(meta: Any, fail: Callable[[str], ValueError]) -> None:
     learner = meta.get("learner")
     if learner is not None:
         need(
-            isinstance(learner, dict) and set(learner) <= {"scale", "model", "gate", "loop"},
-            "learner must be an object with scale, model, gate and/or loop",
+            isinstance(learner, dict)
+            and set(learner) <= {"scale", "model", "gate", "loop", "optimism"},
+            "learner must be an object with scale, model, gate, loop and/or optimism",
         )
         need(
             all(isinstance(v, dict) for v in learner.values()),
-            "learner scale/model/gate/loop are not objects",
+            "learner scale/model/gate/loop/optimism are not objects",
         )
         need(_finite_everywhere(learner), "learner holds a value that is not finite")
 

@@ -6,7 +6,9 @@ import numpy as np
 
 from agent.collision_split import choose_collision_split
 from agent.learner import SMDPAgent
+from agent.optimism import UntriedOptimism
 from agent.partition_tree import GatedPartitionTree, PartitionTree
+from agent.smdp import epoch_returns
 
 
 class TreeAgent(SMDPAgent):
@@ -26,6 +28,10 @@ class TreeAgent(SMDPAgent):
     """``TreeConfig.collision_splits``: the input at which the epochs ending now end, when
     their last step collided (the loop sets it; None otherwise). An epoch whose ``end_x`` is
     this very list ended on the collision; the earlier stretches of a held run do not."""
+
+    optimism: UntriedOptimism | None = None
+    """``TreeConfig.optimistic_untried``: the untried actions and their bound (made with the
+    first epoch, so that it sees the tree's initial leaves; None while off)."""
 
     def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
         if self.config.leaves_per_terminal > 0:
@@ -48,6 +54,8 @@ class TreeAgent(SMDPAgent):
         the model and may cut its leaf (``TreeConfig.collision_splits``)."""
         if terminated and type(self.partition) is GatedPartitionTree:
             self.partition.terminals += 1
+        if self.config.optimistic_untried:
+            self._pay(leaf, action, rs)
         split = super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
         if terminated:
             self._after_terminal_epoch()
@@ -57,6 +65,30 @@ class TreeAgent(SMDPAgent):
             if not split:
                 split = self._collision_split(leaf, action)
         return split
+
+    def _pay(self, leaf: int, action: int, rs: list[float]) -> None:
+        """``TreeConfig.optimistic_untried``: ``action`` is tried in ``leaf``, and the largest
+        return the epoch's rewards paid may raise the untried actions' bound
+        (:class:`agent.optimism.UntriedOptimism`)."""
+        optimism = self.optimism
+        if optimism is None:
+            optimism = self.optimism = UntriedOptimism(
+                self.n_actions, self.partition.leaves(), self.q_init
+            )
+        optimism.tried(leaf, action)
+        moved = optimism.paid(max(epoch_returns(rs, 0.0, self.config.gamma)), self.q)
+        if self.model is not None:
+            tolerance = self._in_units(self.config.sweep_tolerance)
+            for moved_leaf, change in moved.items():
+                if change > tolerance:
+                    self.model.push(moved_leaf, change)
+
+    def _grow(self, parent: int, children: tuple[int, int]) -> None:
+        """:meth:`SMDPAgent._grow`; the children inherit the parent's untried actions
+        (``TreeConfig.optimistic_untried``)."""
+        super()._grow(parent, children)
+        if self.optimism is not None:
+            self.optimism.split(parent, children)
 
     def _collision_split(self, leaf: int, action: int) -> bool:
         """``TreeConfig.collision_splits``: cut ``leaf`` where the stored epochs of ``action``
