@@ -30,7 +30,9 @@ can build it by name::
   where one action's collided and free stored epochs part (part 14, "Collision splits"; an
   env that reports no collisions runs as before), and a tree that starts as a table of the
   inputs when they are integers and the cells fit the leaf cap (part 15, "A table for integer
-  inputs"; float inputs run as before). It runs on
+  inputs"; float inputs run as before), and untried actions valued at the largest return an
+  epoch has paid (part 16, "Optimism for untried actions"; a task that pays at most 0 a step
+  runs as before). It runs on
   :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop, which those options need.
 """
 
@@ -99,7 +101,8 @@ GENERAL = Preset(
     "general",
     "one set of defaults for every task: measured units, a model over the leaves, sweeping, "
     "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals "
-    "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs",
+    "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs, optimism for "
+    "untried actions",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -119,6 +122,7 @@ GENERAL = Preset(
         novelty_episodes=100,
         collision_splits=True,
         table_cells=16384,
+        optimistic_untried=True,
     ),
     "adaptive+tabu",
 )
@@ -132,6 +136,7 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     12: {"novelty_episodes": None},
     14: {"collision_splits": False},
     15: {"table_cells": None},
+    16: {"optimistic_untried": False},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none)."""

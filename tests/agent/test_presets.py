@@ -45,6 +45,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"novelty_episodes"}  # issue 9, part 12
     others |= {"collision_splits"}  # issue 9, part 14
     others |= {"table_cells"}  # issue 9, part 15
+    others |= {"optimistic_untried"}  # issue 9, part 16
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -56,6 +57,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.novelty_episodes == 100  # part 12 ("Tasks without terminal states")
     assert general.collision_splits is True  # part 14 ("Collision splits")
     assert general.table_cells == general.max_leaves  # part 15 ("A table for integer inputs")
+    assert general.optimistic_untried is True  # part 16 ("Optimism for untried actions")
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -135,6 +137,24 @@ def test_part14_comparisons_set_the_preset_against_part_13s(kind: str) -> None:
     assert data["experiment"]["seed"] == {"mazes": 14102, "paper": 14103}[kind]
 
 
+@pytest.mark.parametrize(
+    ("name", "part", "seed"),
+    [("table_tasks", 14, 15101), ("optimism_classic", 15, 16101), ("optimism_tasks", 15, 16102)],
+)
+def test_parts_15_and_16_set_the_preset_against_the_part_before(
+    name: str, part: int, seed: int
+) -> None:
+    """Each held-out comparison spells the earlier preset out field by field: it must be
+    ``general_as_of(part)`` exactly, so that the report's baseline is what it says."""
+    data = tomllib.loads((EXPERIMENT_DIR / f"{name}.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    old = by_name[f"general-part{part}"]
+    assert old["exploration"] == preset("general").exploration
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(part)
+    assert data["experiment"]["seed"] == seed
+
+
 @pytest.mark.parametrize("kind", ["classic", "mazes"])
 def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) -> None:
     data = tomllib.loads((EXPERIMENT_DIR / f"model_split_from_terminal_{kind}.toml").read_text())
@@ -147,9 +167,12 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(15) == now
-    assert general_as_of(14) == dataclasses.replace(now, table_cells=None)
-    before = dataclasses.replace(now, table_cells=None, collision_splits=False)
+    assert general_as_of(16) == now
+    assert general_as_of(15) == dataclasses.replace(now, optimistic_untried=False)
+    assert general_as_of(14) == dataclasses.replace(now, optimistic_untried=False, table_cells=None)
+    before = dataclasses.replace(
+        now, optimistic_untried=False, table_cells=None, collision_splits=False
+    )
     assert general_as_of(13) == general_as_of(12) == before
     assert general_as_of(11) == dataclasses.replace(before, novelty_episodes=None)
     assert general_as_of(10) == dataclasses.replace(
