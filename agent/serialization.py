@@ -60,7 +60,10 @@ A tree of 4,096 leaves (the default cap) with full error buffers takes about 50 
 MAX_METADATA_BYTES = 64 << 20
 """Largest ``metadata`` entry (its JSON text as stored)."""
 
-OBSERVATION_DTYPES = ("float32", "float64", "int8", "int16", "int32", "int64")
+OBSERVATION_DTYPES = (
+    *("float32", "float64", "int8", "int16", "int32", "int64"),
+    *("uint8", "uint16", "uint32", "uint64"),
+)
 """The observation box dtypes a file may name (an integer one: inputs are cells,
 :mod:`agent.spaces`)."""
 MAX_DIMS = 64

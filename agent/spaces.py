@@ -5,7 +5,8 @@ An integer-typed Box (:func:`integer_inputs`) holds cells: the integer k covers
 split halfway between two integers separates them.
 
 A dimension whose bound is infinite, or beyond :data:`UNBOUNDED_MAGNITUDE` in magnitude (some
-envs write ``float32`` max for "unbounded"), or at its integer dtype's extreme, is unbounded.
+envs write ``float32`` max for "unbounded"), or at the extreme of a 32- or 64-bit integer dtype,
+is unbounded (an 8- or 16-bit one's extremes are real bounds: an image's 0 and 255).
 Agents whose partition can grow its bounds from the data (the tree, ``allow_unbounded=True``)
 get ``-inf`` / ``inf`` there; the others refuse it with a message that says to pass ``bounds``.
 """
@@ -49,9 +50,11 @@ def observation_bounds(
         high = np.asarray(observation_space.high, dtype=np.float64)
         source = "observation_space"
         if integer_inputs(observation_space):
-            limits = np.iinfo(observation_space.dtype)  # the dtype's extremes: unbounded
-            low = np.where(low <= limits.min, -np.inf, low - 0.5)
-            high = np.where(high >= limits.max, np.inf, high + 0.5)
+            low, high = low - 0.5, high + 0.5
+            limits = np.iinfo(observation_space.dtype)
+            if limits.bits >= 32:  # a 32- or 64-bit extreme stands for "no bound"
+                low = np.where(low + 0.5 <= limits.min, -np.inf, low)
+                high = np.where(high - 0.5 >= limits.max, np.inf, high)
     else:
         if len(bounds) != 2:
             raise ValueError(f"bounds must be (low, high), got {bounds!r}")

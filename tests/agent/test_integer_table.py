@@ -45,6 +45,25 @@ def test_an_integer_dimension_at_its_dtype_extreme_is_unbounded() -> None:
         observation_bounds(box, None)
 
 
+def test_small_integer_dtypes_keep_their_extremes_as_bounds() -> None:
+    """An image's uint8 box runs from 0 to 255 for real; so does an int8 one's -128..127."""
+    image = spaces.Box(0, 255, (2,), dtype=np.uint8)
+    assert integer_inputs(image)
+    assert observation_bounds(image, None) == ([-0.5, -0.5], [255.5, 255.5])
+    small = spaces.Box(-128, 127, (1,), dtype=np.int8)
+    assert observation_bounds(small, None) == ([-128.5], [127.5])
+    agent = preset("general").agent(spaces.Box(0, 255, (1,), dtype=np.uint8), spaces.Discrete(2))
+    assert agent.n_leaves == 256
+
+
+def test_an_agent_on_an_unsigned_box_saves_and_loads(tmp_path: Path) -> None:
+    box = spaces.Box(0, 9, (2,), dtype=np.uint16)
+    agent = preset("general").agent(box, spaces.Discrete(3), seed=1)
+    again = type(agent).load(agent.save(tmp_path / "grid"))
+    assert again.observation_space == box
+    assert again.n_leaves == agent.n_leaves == 100
+
+
 def test_one_dimension_becomes_one_leaf_per_integer() -> None:
     tree = PartitionTree([-0.5], [4.5], TABLE, integer=True)
     assert tree.n_leaves == 5
