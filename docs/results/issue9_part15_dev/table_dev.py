@@ -5,33 +5,56 @@
 
     python docs/results/issue9_part15_dev/table_dev.py OUT.jsonl TASK SEED table|before
 """
-import json, sys, time, warnings, dataclasses
+
+import json
+import sys
+import time
+import warnings
+
 import gymnasium as gym
 import numpy as np
-from agent import adapt_env, preset, general_as_of
+
+from agent import adapt_env, general_as_of
 from agent.tree_ensemble import tree_agent_class
+
 
 def episode_return(env, seed, act):
     obs, _ = env.reset(seed=seed)
     total, done = 0.0, False
     while not done:
         obs, reward, terminated, truncated, _ = env.step(act(obs))
-        total += float(reward); done = terminated or truncated
+        total += float(reward)
+        done = terminated or truncated
     return total
+
 
 def main(out, task, seed, arm):
     warnings.simplefilter("ignore")
-    cfg = preset("general").config if arm == "table" else general_as_of(14)
+    config = general_as_of(15) if arm == "table" else general_as_of(14)  # the runs' presets
     env = adapt_env(gym.make(task))
-    agent = tree_agent_class(cfg)(env.observation_space, env.action_space, "adaptive+tabu", seed, cfg)
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, "adaptive+tabu", seed, config
+    )
     start = time.process_time()
     history = agent.learn(env, 1000, reset_seed=seed)
     cpu = time.process_time() - start
     greedy = [episode_return(env, 10**6 + 1000 * seed + i, agent.predict) for i in range(100)]
-    curve = [round(float(np.mean([h.episode_return for h in history[i:i+100]])), 2) for i in range(0, 1000, 100)]
-    rec = {"task": task, "seed": seed, "arm": arm, "greedy": round(float(np.mean(greedy)), 3),
-           "curve": curve, "leaves": agent.n_leaves, "cpu": round(cpu, 1)}
+    curve = [
+        round(float(np.mean([h.episode_return for h in history[i : i + 100]])), 2)
+        for i in range(0, 1000, 100)
+    ]
+    record = {
+        "task": task,
+        "seed": seed,
+        "arm": arm,
+        "greedy": round(float(np.mean(greedy)), 3),
+        "curve": curve,
+        "leaves": agent.n_leaves,
+        "cpu": round(cpu, 1),
+    }
     with open(out, "a") as f:
-        f.write(json.dumps(rec) + "\n")
+        f.write(json.dumps(record) + "\n")
 
-main(sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4])
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4])

@@ -1,4 +1,5 @@
-"""Issue 9, part 16 (development): the general preset with TreeConfig overrides on a task
+"""Issue 9, part 16 (development): the general preset of part 15 (``general_as_of(15)``, the
+preset the runs started from) with TreeConfig overrides on a task
 through ``agent.adapt_env``: 1,000 episodes from first reset seed SEED, then 100 greedy
 episodes (reset seeds 10^6 + 1000 SEED + i). One JSON line per run::
 
@@ -17,7 +18,7 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 
-from agent import adapt_env, preset
+from agent import adapt_env, general_as_of
 from agent.tree_ensemble import tree_agent_class
 
 
@@ -33,7 +34,7 @@ def episode_return(env: gym.Env, seed: int, act) -> float:
 
 def main(out: str, task: str, seed: int, label: str, overrides: str) -> None:
     warnings.simplefilter("ignore")
-    config = dataclasses.replace(preset("general").config, **json.loads(overrides))
+    config = dataclasses.replace(general_as_of(15), **json.loads(overrides))
     env = adapt_env(gym.make(task))
     agent = tree_agent_class(config)(
         env.observation_space, env.action_space, "adaptive+tabu", seed, config
