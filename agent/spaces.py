@@ -45,6 +45,11 @@ def observation_bounds(
             "agent.adapt_env(env) flattens it"
         )
     dims = observation_space.shape[0]
+    if dims == 0:
+        raise ValueError(
+            f"observation_space has no dimensions ({observation_space!r}); an agent needs at "
+            "least one input"
+        )
     if bounds is None:
         low = np.asarray(observation_space.low, dtype=np.float64)
         high = np.asarray(observation_space.high, dtype=np.float64)
