@@ -17,7 +17,8 @@ class GridAgent(SMDPAgent):
     strategies, so that coarse, fine and adaptive partitions compare on equal terms.
 
     An epoch holds its action while the input stays in one cell (eqs. 9-10 over cells). The
-    split fields of ``config`` are unused.
+    split fields of ``config`` (and ``table_cells``: the grid's cells are its resolution) are
+    unused; ``optimistic_untried``, which the tree agents implement, is refused.
     """
 
     kind = "grid"
@@ -34,6 +35,11 @@ class GridAgent(SMDPAgent):
         resolution: int | Sequence[int] = 20,
     ) -> None:
         self.resolution = resolution
+        if config is not None and getattr(config, "optimistic_untried", False) is True:
+            raise ValueError(
+                "TreeConfig.optimistic_untried = True is implemented by the tree agents "
+                "(agent.TreeAgent), not GridAgent"
+            )
         super().__init__(observation_space, action_space, exploration, seed, config, bounds)
 
     def _make_partition(self, low: list[float], high: list[float]) -> UniformGrid:

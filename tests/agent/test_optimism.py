@@ -13,7 +13,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from agent import TreeConfig, adapt_env, preset
+from agent import GridAgent, TreeConfig, adapt_env, preset
 from agent.fast_loop import ineligible_reason
 from agent.optimism import UntriedOptimism
 from agent.tree_agent import TreeAgent
@@ -218,3 +218,11 @@ def test_frozen_lake_is_learnt_with_optimism_and_not_without() -> None:
         success[optimistic] = wins / 200
     assert success[True] > 0.6, success
     assert success[False] < 0.3, success
+
+
+def test_the_grid_agent_refuses_the_option_by_name() -> None:
+    config = TreeConfig(optimistic_untried=True)
+    with pytest.raises(ValueError, match="optimistic_untried = True is implemented by the tree"):
+        GridAgent(
+            gym.spaces.Box(0.0, 1.0, (2,)), gym.spaces.Discrete(4), "tabu", 0, config, None, 4
+        )
