@@ -448,3 +448,15 @@ def test_bad_table_cells_name_the_file_and_field(value: Any, defect: str) -> Non
     message = _refusal({"name": "table", "preset": "general", "config": {"table_cells": value}})
     assert "table_cells" in message, message
     assert defect in message, message
+
+
+@pytest.mark.parametrize(
+    ("value", "defect"),
+    [(1, "got 1"), ("yes", "got 'yes'"), (None, "got None"), ([True], "got [True]")],
+)
+def test_bad_optimistic_untried_names_the_file_and_field(value: Any, defect: str) -> None:
+    """Part 16's option in a strategy table: every bad value is refused by name."""
+    strategy = {"name": "opt", "preset": "general", "config": {"optimistic_untried": value}}
+    message = _refusal(strategy)
+    assert "optimistic_untried" in message, message
+    assert defect in message, message
