@@ -46,7 +46,8 @@ from gymnasium import spaces
 
 from agent.config import TreeConfig
 from agent.exploration import Exploration, Tabu, make_exploration
-from agent.spaces import UNBOUNDED_MAGNITUDE
+from agent.spaces import MAX_OBSERVATION_DIMS, UNBOUNDED_MAGNITUDE
+from agent.uniform_grid import MAX_GRID_CELLS
 
 FORMAT = "bullet_maze.agent"
 VERSION = 2
@@ -66,9 +67,6 @@ OBSERVATION_DTYPES = (
 )
 """The observation box dtypes a file may name (an integer one: inputs are cells,
 :mod:`agent.spaces`)."""
-MAX_DIMS = 64
-"""Most observation dimensions an agent file may declare."""
-
 MAX_ACTIONS = 4096
 """Most actions an agent file may declare."""
 
@@ -85,9 +83,6 @@ SIZE_LIMITS: dict[str, int] = {
 }
 """Settings that size memory: one error buffer holds ``split_min_samples`` pairs (24 bytes
 each in 2-D), the tree at most ``max_leaves`` leaves, an epoch at most ``max_epoch_steps``."""
-
-MAX_GRID_CELLS = 1_000_000
-"""Most cells a uniform grid may have (Q-bar holds a row of floats per cell)."""
 
 TREE_ARRAYS = ("dim", "threshold", "left", "parent", "low", "high", "depth")
 """Arrays of a tree partition that acting needs (``PartitionTree.to_arrays``)."""
@@ -636,8 +631,9 @@ def _check_metadata(meta: Any, fail: Callable[[str], ValueError]) -> None:
     )
     dims = len(low)
     need(
-        1 <= dims <= MAX_DIMS and len(high) == dims,
-        f"observation_space has {dims} lows and {len(high)} highs (1 to {MAX_DIMS} dimensions)",
+        1 <= dims <= MAX_OBSERVATION_DIMS and len(high) == dims,
+        f"observation_space has {dims} lows and {len(high)} highs "
+        f"(1 to {MAX_OBSERVATION_DIMS} dimensions)",
     )
     need(all(a <= b for a, b in zip(low, high, strict=True)), "observation_space has low > high")
     need(box["dtype"] in OBSERVATION_DTYPES, f"observation_space dtype {box['dtype']!r}")

@@ -21,6 +21,11 @@ from gymnasium import spaces
 UNBOUNDED_MAGNITUDE = 1e30
 """A declared bound at least this large in magnitude is read as unbounded."""
 
+MAX_OBSERVATION_DIMS = 64
+"""Most observation dimensions an agent takes (and an agent file may declare): the model keeps
+each stored epoch's input, so its memory grows with them. The maze's lidar with its default 36
+rays has 38."""
+
 
 def observation_bounds(
     observation_space: spaces.Space,
@@ -49,6 +54,11 @@ def observation_bounds(
         raise ValueError(
             f"observation_space has no dimensions ({observation_space!r}); an agent needs at "
             "least one input"
+        )
+    if dims > MAX_OBSERVATION_DIMS:
+        raise ValueError(
+            f"observation_space has {dims} dimensions, at most {MAX_OBSERVATION_DIMS}: give the "
+            "agent fewer inputs (a maze's lidar_rays, a smaller frame stack)"
         )
     if bounds is None:
         low = np.asarray(observation_space.low, dtype=np.float64)

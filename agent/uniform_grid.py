@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+
+MAX_GRID_CELLS = 1_000_000
+"""Most cells a uniform grid may have (Q-bar holds a row of floats per cell)."""
 
 
 class UniformGrid:
@@ -31,6 +35,11 @@ class UniformGrid:
             raise ValueError(
                 f"resolution must be a positive int or {self.dims} positive ints, "
                 f"got {resolution!r}"
+            )
+        if math.prod(cells) > MAX_GRID_CELLS:  # before any table is sized (a lidar's 10^38)
+            raise ValueError(
+                f"resolution {resolution!r} over {self.dims} dimensions gives "
+                f"{math.prod(cells):,} cells, at most {MAX_GRID_CELLS:,}"
             )
         self.resolution = cells
         self.root_low = [float(v) for v in low]

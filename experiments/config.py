@@ -41,12 +41,9 @@ from gymnasium.envs.registration import load_env_creator, registry
 
 import bullet_maze
 from agent.presets import preset as named_preset
-from agent.serialization import (
-    MAX_GRID_CELLS,
-    check_value,
-    config_from_data,
-    exploration_from_data,
-)
+from agent.serialization import check_value, config_from_data, exploration_from_data
+from agent.spaces import MAX_OBSERVATION_DIMS
+from agent.uniform_grid import MAX_GRID_CELLS
 from bullet_maze.params import MAX_EPISODE_STEPS, MODES
 from experiments.agent_kinds import (
     AGENT_KINDS,
@@ -87,8 +84,6 @@ MAX_PLANNED_RUNS = MAX_RUNS * MAX_STRATEGIES
 """Most runs (runs x tasks x strategies) in one experiment: what one environment allowed."""
 MAX_EVAL_EPISODES = 100_000
 """Most greedy evaluation episodes per run."""
-MAX_OBSERVATION_DIMS = 64
-"""Most dimensions of ``observation_bounds``."""
 MAX_ACTION_BINS = 64
 """Most values per dimension of ``action_bins`` (the grid has at most 4,096 actions in all)."""
 SPLITS = ("dev", "test")

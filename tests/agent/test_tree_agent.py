@@ -152,6 +152,16 @@ def test_learns_the_corridor_well_above_chance(
     assert np.mean(greedy_steps(agent, make_corridor(), 5)) < 60
 
 
+@pytest.mark.parametrize(("dims", "resolution"), [(38, 10), (3, [1000, 1000, 2]), (7, 8)])
+def test_a_grid_of_too_many_cells_is_refused_before_any_table_is_sized(
+    dims: int, resolution: Any
+) -> None:
+    """A lidar's 38 inputs at 10 cells each once took the process to 21 GB (part 17)."""
+    box = spaces.Box(0.0, 1.0, (dims,), np.float64)
+    with pytest.raises(ValueError, match=r"resolution .* cells, at most 1,000,000"):
+        GridAgent(box, spaces.Discrete(4), "epsilon-greedy", resolution=resolution)
+
+
 def test_grid_agent_learns_the_corridor(make_corridor: Callable[..., gym.Env]) -> None:
     env = make_corridor()
     agent = GridAgent(env.observation_space, env.action_space, "epsilon-greedy", resolution=10)
