@@ -120,6 +120,15 @@ class TreeConfig:
     2^d leaves, as ``initial_depth = d`` (added to ``initial_depth``). It gives the tree the
     sign of every input from the start, where a task's values are uniform until its goal is
     first reached (Acrobot) and the split test alone never leaves the root."""
+    presplit_max_dimensions: int | None = None
+    """Beyond the paper: ``presplit_each_dimension`` splits every dimension of an input of at
+    most this many dimensions (2^n leaves at most); None: of any input (the tree refuses more
+    than 2^16 leaves). An input with more dimensions (a lidar's 38, stacked frames) splits only
+    its first ``presplit_beyond_dimensions``. ``initial_depth`` is not affected."""
+    presplit_beyond_dimensions: int = 0
+    """Beyond the paper: how many dimensions ``presplit_each_dimension`` splits, in the order of
+    the observation, of an input with more than ``presplit_max_dimensions`` (0: the root stays
+    whole, the paper's start)."""
     table_cells: int | None = None
     """A table for integer inputs (beyond the paper): when the observation box is integer-typed
     (:func:`agent.spaces.integer_inputs`: FrozenLake's, Taxi's or Blackjack's states through
@@ -458,6 +467,19 @@ class TreeConfig:
             raise TypeError(
                 f"TreeConfig.presplit_each_dimension must be a bool, "
                 f"got {self.presplit_each_dimension!r}"
+            )
+        presplit = self.presplit_max_dimensions
+        if presplit is not None and (
+            isinstance(presplit, bool) or not isinstance(presplit, int) or not 0 <= presplit <= 16
+        ):
+            raise ValueError(
+                "TreeConfig.presplit_max_dimensions must be None or an int in [0, 16] "
+                f"(2^16 leaves), got {presplit!r}"
+            )
+        beyond = self.presplit_beyond_dimensions
+        if isinstance(beyond, bool) or not isinstance(beyond, int) or not 0 <= beyond <= 16:
+            raise ValueError(
+                f"TreeConfig.presplit_beyond_dimensions must be an int in [0, 16], got {beyond!r}"
             )
         cells = self.table_cells
         if cells is not None and (

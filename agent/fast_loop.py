@@ -115,6 +115,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_bonus": (float, int),
     "initial_depth": int,
     "presplit_each_dimension": bool,
+    "presplit_max_dimensions": (int, type(None)),
+    "presplit_beyond_dimensions": int,
     # the kernel keeps no record of untried actions: True turns the loop off (ineligible_reason)
     "optimistic_untried": bool,
     # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)

@@ -77,14 +77,26 @@ class PartitionTree:
             for d, points in enumerate(cuts):
                 self._cut_every_leaf(d, points)
             return
-        depth = config.initial_depth + (self.dims if config.presplit_each_dimension else 0)
+        depth = config.initial_depth + self._presplit_dimensions()
         if depth > 16:
             raise ValueError(
                 f"the tree would start with 2^{depth} leaves (initial_depth "
                 f"{config.initial_depth}, presplit_each_dimension over {self.dims} dimensions); "
-                "at most 2^16"
+                "at most 2^16: set TreeConfig.presplit_max_dimensions to presplit fewer"
             )
         self._presplit(depth)
+
+    def _presplit_dimensions(self) -> int:
+        """How many dimensions ``presplit_each_dimension`` splits: every one, unless the input
+        has more than ``presplit_max_dimensions``; then its first
+        ``presplit_beyond_dimensions``."""
+        config = self.config
+        if not config.presplit_each_dimension:
+            return 0
+        most = config.presplit_max_dimensions
+        if most is None or self.dims <= most:
+            return self.dims
+        return min(config.presplit_beyond_dimensions, self.dims)
 
     def _presplit(self, depth: int) -> None:
         """``TreeConfig.initial_depth``: split every leaf at its midpoint, level by level, along

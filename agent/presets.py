@@ -102,7 +102,7 @@ GENERAL = Preset(
     "one set of defaults for every task: measured units, a model over the leaves, sweeping, "
     "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals "
     "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs, optimism for "
-    "untried actions",
+    "untried actions, a presplit of at most the first 4 of more than 8 inputs",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -123,6 +123,8 @@ GENERAL = Preset(
         collision_splits=True,
         table_cells=16384,
         optimistic_untried=True,
+        presplit_max_dimensions=8,
+        presplit_beyond_dimensions=4,
     ),
     "adaptive+tabu",
 )
@@ -137,9 +139,12 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     14: {"collision_splits": False},
     15: {"table_cells": None},
     16: {"optimistic_untried": False},
+    17: {"presplit_max_dimensions": None, "presplit_beyond_dimensions": 0},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
-before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none)."""
+before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none).
+Part 17 changes only inputs of more than 8 dimensions, which part 16's preset refused above 16
+and presplit into 512 to 65,536 leaves from 9 to 16."""
 
 
 def general_as_of(part: int) -> TreeConfig:

@@ -44,6 +44,9 @@ PARTS: dict[int, str] = {
     16: "optimistic_untried: each epoch's largest return is computed and untried actions are "
     "raised when it sets a new bound; MountainCar pays at most 0, so its runs should be the "
     "same; on the maze the goal's +5 sets the bound once the actions are tried",
+    17: "presplit_max_dimensions 8, presplit_beyond_dimensions 4: only an input of more than 8 "
+    "dimensions is presplit differently (part 16's preset refused more than 16); MountainCar, "
+    "the maze and Taxi have at most 2, so their runs should be the same",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

@@ -136,6 +136,17 @@ VARIANTS = [
     ("epsilon-greedy", {"epsilon": 0.3}, {"max_epoch_steps": 3, "q_init": 1.0}),
     ("tabu", {"epsilon": 0.2}, {"inherit_q": False, "reset_counts_on_split": False}),
     ("adaptive", {}, {"children_inherit_samples": False, "split_point": "midpoint"}),
+    # part 17: the 2-D maze beyond a limit of 1 presplits only x
+    ("adaptive", {}, {"presplit_each_dimension": True, "presplit_max_dimensions": 1}),
+    (
+        "greedy",
+        {},
+        {
+            "presplit_each_dimension": True,
+            "presplit_max_dimensions": 1,
+            "presplit_beyond_dimensions": 1,
+        },
+    ),
 ]
 
 

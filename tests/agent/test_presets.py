@@ -46,6 +46,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"collision_splits"}  # issue 9, part 14
     others |= {"table_cells"}  # issue 9, part 15
     others |= {"optimistic_untried"}  # issue 9, part 16
+    others |= {"presplit_max_dimensions", "presplit_beyond_dimensions"}  # issue 9, part 17
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -58,6 +59,8 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.collision_splits is True  # part 14 ("Collision splits")
     assert general.table_cells == general.max_leaves  # part 15 ("A table for integer inputs")
     assert general.optimistic_untried is True  # part 16 ("Optimism for untried actions")
+    # part 17 ("Inputs with many dimensions")
+    assert (general.presplit_max_dimensions, general.presplit_beyond_dimensions) == (8, 4)
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -155,6 +158,20 @@ def test_parts_15_and_16_set_the_preset_against_the_part_before(
     assert data["experiment"]["seed"] == seed
 
 
+def test_part17_lidar_comparison_sets_the_preset_against_part_16s_without_a_presplit() -> None:
+    """Part 16's preset refuses the lidar's 38 inputs; its arm is that preset with the presplit
+    off, what a user could run then."""
+    data = tomllib.loads((EXPERIMENT_DIR / "presplit_lidar_mazes.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    old = by_name["general-part16-no-presplit"]
+    assert old["exploration"] == preset("general").exploration
+    expected = dataclasses.replace(general_as_of(16), presplit_each_dimension=False)
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == expected
+    assert data["env"]["params"] == {"observation": "lidar"}
+    assert data["experiment"]["seed"] == 17102
+
+
 @pytest.mark.parametrize("kind", ["classic", "mazes"])
 def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) -> None:
     data = tomllib.loads((EXPERIMENT_DIR / f"model_split_from_terminal_{kind}.toml").read_text())
@@ -167,6 +184,8 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
+    assert general_as_of(17) == now
+    now = dataclasses.replace(now, presplit_max_dimensions=None, presplit_beyond_dimensions=0)
     assert general_as_of(16) == now
     assert general_as_of(15) == dataclasses.replace(now, optimistic_untried=False)
     assert general_as_of(14) == dataclasses.replace(now, optimistic_untried=False, table_cells=None)

@@ -460,3 +460,24 @@ def test_bad_optimistic_untried_names_the_file_and_field(value: Any, defect: str
     message = _refusal(strategy)
     assert "optimistic_untried" in message, message
     assert defect in message, message
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "defect"),
+    [
+        ("presplit_max_dimensions", 17, "must be None or an int in [0, 16]"),
+        ("presplit_max_dimensions", -2, "got -2"),
+        ("presplit_max_dimensions", 8.0, "got 8.0"),
+        ("presplit_max_dimensions", "8", "got '8'"),
+        ("presplit_max_dimensions", True, "got true"),
+        ("presplit_beyond_dimensions", 99, "must be an int in [0, 16]"),
+        ("presplit_beyond_dimensions", -1, "got -1"),
+        ("presplit_beyond_dimensions", [2], "got [2]"),
+        ("presplit_beyond_dimensions", 1.5, "got 1.5"),
+    ],
+)
+def test_bad_presplit_limits_name_the_file_and_field(field: str, value: Any, defect: str) -> None:
+    """Part 17's options in a strategy table: every bad value is refused by name."""
+    message = _refusal({"name": "wide", "preset": "general", "config": {field: value}})
+    assert field in message, message
+    assert defect in message, message

@@ -53,10 +53,14 @@ def run(
     episodes: int = 1000,
     out: Path = OUT,
     exploration: dict[str, Any] | None = None,
+    wrap: Any = None,
+    base: Any = None,
 ) -> None:
+    """``wrap`` (part 17) turns the env into the one learnt (``adapt_env`` of a frame stack);
+    ``base`` is the config the overrides apply to (default: today's general preset)."""
     general = preset("general")
-    config = dataclasses.replace(general.config, **overrides)
-    env = gym.make(task)
+    config = dataclasses.replace(base or general.config, **overrides)
+    env = gym.make(task) if wrap is None else wrap(gym.make(task))
     if exploration is None:
         strategy = general.make_exploration()
     else:

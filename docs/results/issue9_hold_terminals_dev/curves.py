@@ -42,12 +42,24 @@ def greedy_steps(agent: object, env: gym.Env, seed: int) -> int:
     return steps
 
 
-def run(maze: str, seed: int, label: str, overrides: dict, out: Path, episodes: int = 600) -> None:
-    env = gym.make("BulletMaze-v0", maze=maze, max_episode_steps=5000)
-    probe = gym.make("BulletMaze-v0", maze=maze, max_episode_steps=5000)
+def run(
+    maze: str,
+    seed: int,
+    label: str,
+    overrides: dict,
+    out: Path,
+    episodes: int = 600,
+    env_kwargs: dict | None = None,
+    base: object | None = None,
+) -> None:
+    """``env_kwargs`` go to ``gym.make`` (part 17: ``{"observation": "lidar"}``); ``base`` is
+    the config the overrides apply to (default: today's general preset)."""
+    kwargs = env_kwargs or {}
+    env = gym.make("BulletMaze-v0", maze=maze, max_episode_steps=5000, **kwargs)
+    probe = gym.make("BulletMaze-v0", maze=maze, max_episode_steps=5000, **kwargs)
     optimum = env.unwrapped.optimal_steps  # type: ignore[attr-defined]
     general = preset("general")
-    config = dataclasses.replace(general.config, **overrides)
+    config = dataclasses.replace(base or general.config, **overrides)  # type: ignore[type-var]
     agent = tree_agent_class(config)(
         env.observation_space, env.action_space, general.make_exploration(), seed, config
     )
@@ -69,6 +81,7 @@ def run(maze: str, seed: int, label: str, overrides: dict, out: Path, episodes: 
         "seed": seed,
         "label": label,
         "over": overrides,
+        **({"env": env_kwargs} if env_kwargs else {}),
         "opt": optimum,
         "auc": round(float(steps.mean()) / optimum, 3),
         "final": round(final / optimum, 3),
