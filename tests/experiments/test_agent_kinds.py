@@ -481,3 +481,15 @@ def test_bad_presplit_limits_name_the_file_and_field(field: str, value: Any, def
     message = _refusal({"name": "wide", "preset": "general", "config": {field: value}})
     assert field in message, message
     assert defect in message, message
+
+
+@pytest.mark.parametrize("name", ["general", "paper"])
+def test_an_observation_wider_than_an_agent_takes_names_the_strategy(name: str) -> None:
+    """A maze's lidar of 70 rays is 72 inputs: refused when the run's agent is built."""
+    import bullet_maze  # noqa: F401  (registers BulletMaze-v0)
+
+    env = gym.make("BulletMaze-v0", maze="open", observation="lidar", lidar_rays=70)
+    config = _parse({"name": "wide", "preset": name})
+    with pytest.raises(ConfigError, match=r"\[strategy 'wide'\].*72 dimensions, at most 64"):
+        factory.make_agent(config, config.strategy("wide"), env, seed=0)
+    env.close()
