@@ -16,26 +16,16 @@ import sys
 import warnings
 from pathlib import Path
 
-import gymnasium as gym
 import numpy as np
 
-from agent import adapt_env, general_as_of
-from agent.tree_ensemble import tree_agent_class
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from local_greedy import trained  # noqa: E402
 
 
 def main(seed: int, out: str, model_dir: str) -> None:
     warnings.simplefilter("ignore")
-    path = Path(model_dir) / f"CartPole-v1-seed{seed}.npz"
-    env = adapt_env(gym.make("CartPole-v1"))
-    config = general_as_of(17)
-    cls = tree_agent_class(config)
-    if path.exists():
-        agent = cls.load(path)
-    else:
-        agent = cls(env.observation_space, env.action_space, "adaptive+tabu", seed, config)
-        agent.learn(env, 1000, reset_seed=seed)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        agent.save(path)
+    agent, env = trained("CartPole-v1", seed, model_dir)
     episodes = []
     for i in range(20):
         obs, _ = env.reset(seed=10**6 + 1000 * seed + i)

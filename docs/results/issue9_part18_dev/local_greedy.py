@@ -30,18 +30,29 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from agent import adapt_env, general_as_of
-from agent.tree_ensemble import tree_agent_class
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent / "issue9_part16_dev"))
+
+from tasks_dev import episode_return  # noqa: E402
+
+from agent import adapt_env, general_as_of  # noqa: E402
+from agent.tree_ensemble import tree_agent_class  # noqa: E402
 
 
-def episode_return(env: gym.Env, seed: int, act: Any) -> float:
-    obs, _ = env.reset(seed=seed)
-    total, done = 0.0, False
-    while not done:
-        obs, reward, terminated, truncated, _ = env.step(act(obs))
-        total += float(reward)
-        done = terminated or truncated
-    return total
+def trained(task: str, seed: int, model_dir: str) -> tuple[Any, gym.Env]:
+    """``general_as_of(17)`` trained on ``task`` (1,000 episodes, first reset seed ``seed``),
+    loaded from ``model_dir`` when an earlier probe saved it there; and the env."""
+    path = Path(model_dir) / f"{task}-seed{seed}.npz"
+    env = adapt_env(gym.make(task))
+    config = general_as_of(17)
+    cls = tree_agent_class(config)
+    if path.exists():
+        return cls.load(path), env
+    agent = cls(env.observation_space, env.action_space, "adaptive+tabu", seed, config)
+    agent.learn(env, 1000, reset_seed=seed)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    agent.save(path)
+    return agent, env
 
 
 def local_chooser(agent: Any, kind: str, k: int) -> Any:
@@ -86,17 +97,7 @@ def local_chooser(agent: Any, kind: str, k: int) -> Any:
 
 def main(task: str, seed: int, out: str, model_dir: str) -> None:
     warnings.simplefilter("ignore")
-    path = Path(model_dir) / f"{task}-seed{seed}.npz"
-    env = adapt_env(gym.make(task))
-    config = general_as_of(17)
-    cls = tree_agent_class(config)
-    if path.exists():
-        agent = cls.load(path)
-    else:
-        agent = cls(env.observation_space, env.action_space, "adaptive+tabu", seed, config)
-        agent.learn(env, 1000, reset_seed=seed)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        agent.save(path)
+    agent, env = trained(task, seed, model_dir)
     choosers = {"leaf": agent.predict}
     for k in (4, 8, 16):
         choosers[f"knn-{k}"] = local_chooser(agent, "knn", k)
