@@ -149,11 +149,15 @@ and presplit into 512 to 65,536 leaves from 9 to 16."""
 
 def general_as_of(part: int) -> TreeConfig:
     """The general preset's config as it was after issue 9's part ``part`` (7 or later): today's,
-    with every field a later part changed back at its earlier value. The held-out comparisons
+    with every field a later part changed back at its earlier value (for a field changed by
+    several later parts, the value before the first of them). The held-out comparisons
     spell these out (``experiments/*.toml``), and the benches time them."""
     if isinstance(part, bool) or not isinstance(part, int) or part < 7:
         raise ValueError(f"general_as_of: part must be an int >= 7, got {part!r}")
-    earlier = {k: v for n, fields in GENERAL_CHANGES.items() if n > part for k, v in fields.items()}
+    earlier: dict[str, Any] = {}
+    for n in sorted(GENERAL_CHANGES, reverse=True):  # a field changed twice: the first change wins
+        if n > part:
+            earlier.update(GENERAL_CHANGES[n])
     return dataclasses.replace(GENERAL.config, **earlier)
 
 

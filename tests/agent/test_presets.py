@@ -204,3 +204,19 @@ def test_general_as_of_turns_back_each_later_part() -> None:
     for bad in (6, True, "9", 8.0):
         with pytest.raises(ValueError, match="general_as_of: part must be an int >= 7"):
             general_as_of(bad)  # type: ignore[arg-type]
+
+
+def test_general_as_of_takes_the_value_before_the_first_later_change(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A field that two later parts changed (gamma: 0.99 until part 11, 0.995 until part 30,
+    then today's) goes back to the value it had at the part asked for, whatever the order the
+    changes were listed in."""
+    from agent import presets
+
+    later = {30: {"gamma": 0.995}}
+    for changes in ({**later, **presets.GENERAL_CHANGES}, {**presets.GENERAL_CHANGES, **later}):
+        monkeypatch.setattr(presets, "GENERAL_CHANGES", changes)
+        assert general_as_of(30).gamma == preset("general").config.gamma
+        assert general_as_of(29).gamma == general_as_of(11).gamma == 0.995
+        assert general_as_of(10).gamma == general_as_of(7).gamma == 0.99
