@@ -8,7 +8,7 @@ import tomllib
 import pytest
 from gymnasium import spaces
 
-from agent import PRESETS, TreeConfig, general_as_of, preset
+from agent import PRESETS, TreeConfig, general_as_of, preset, presets
 from agent.tree_ensemble import TreeEnsembleAgent
 from experiments import EXPERIMENT_DIR
 
@@ -212,8 +212,6 @@ def test_general_as_of_takes_the_value_before_the_first_later_change(
     """A field that two later parts changed (gamma: 0.99 until part 11, 0.995 until part 30,
     then today's) goes back to the value it had at the part asked for, whatever the order the
     changes were listed in."""
-    from agent import presets
-
     later = {30: {"gamma": 0.995}}
     for changes in ({**later, **presets.GENERAL_CHANGES}, {**presets.GENERAL_CHANGES, **later}):
         monkeypatch.setattr(presets, "GENERAL_CHANGES", changes)
