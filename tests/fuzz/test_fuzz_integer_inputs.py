@@ -90,8 +90,10 @@ def test_any_discrete_observation_becomes_a_table_of_its_cells(case: int, tmp_pa
             assert all(lo < v < h for v, lo, h in zip(x.tolist(), leaf_low, leaf_high, strict=True))
             assert all(h - lo == 1.0 for lo, h in zip(leaf_low, leaf_high, strict=True))
     else:
-        dims = len(box.low)  # the presplit, once per dimension: at most the first 4 beyond 8
-        assert agent.n_leaves == 2 ** (dims if dims <= 8 else 4)
+        dims = len(box.low)  # the presplit, once per dimension, limited beyond the preset's cap
+        limit, beyond = config.presplit_max_dimensions, config.presplit_beyond_dimensions
+        assert limit is not None
+        assert agent.n_leaves == 2 ** (dims if dims <= limit else beyond)
     history = agent.learn(env, 4, reset_seed=case)
     assert len(history) == 4
     again = type(agent).load(agent.save(tmp_path / "agent"))
