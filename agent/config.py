@@ -286,6 +286,19 @@ class TreeConfig:
     -1 + gamma Q with Q < 0) and a maze's goal (+5) are not, and there the option changes
     nothing. Read at the start of each episode, from the episode after the first terminal
     (so it implies ``decision_from_terminal``). Needs ``decision_steps``."""
+    failure_gamma: float | None = None
+    """A longer discount for tasks whose terminals are failures (beyond the paper; None: off).
+    From the episode after ``decision_on_failure``'s measure first finds the terminal steps'
+    mean reward below the mean one-step target, eqs. (6), (7), (9) discount by this instead of
+    ``gamma``, for the rest of the run (a latch, so the values are not rescaled back and
+    forth). Where the terminal is a goal (a maze, MountainCar, Acrobot) the measure stays shut
+    and the run is the one without this option, bit for bit. Where ending the episode is the
+    loss (CartPole's fall) a longer horizon values staying up for longer: gamma 0.9995 from
+    the start solved 17 of 20 CartPole dev seeds against 13 of 20, but moved the dense dev
+    mazes from 1.12x to 1.89x the optimum (docs/paper-notes.md, "A discount gated on
+    failure"). The model's stored epochs keep the discount they were stored with until they
+    leave its window; the reward unit (``scale_horizon`` None) and an optimistic start stay
+    at ``gamma``. Runs on :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
     hold_steps: int | None = None
     """A held exploratory run ends after this many steps (beyond the paper; None:
     ``max_epoch_steps``, which then caps unheld epochs only). Runs on
@@ -333,6 +346,14 @@ class TreeConfig:
     def __post_init__(self) -> None:
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)
         _check_range("gamma", self.gamma, 0.0, 1.0)
+        if self.failure_gamma is not None:
+            if isinstance(self.failure_gamma, bool) or not isinstance(
+                self.failure_gamma, int | float
+            ):
+                raise TypeError(
+                    f"TreeConfig.failure_gamma must be a number or None, got {self.failure_gamma!r}"
+                )
+            _check_range("failure_gamma", self.failure_gamma, 0.0, 1.0)
         if not math.isfinite(self.q_init):
             raise ValueError(f"TreeConfig.q_init must be finite, got {self.q_init!r}")
         for name in ("max_epoch_steps", "hold_steps", "decision_steps", "hold_terminals"):
@@ -617,6 +638,7 @@ LOOP_OPTIONS: dict[str, Any] = {
     "hold_after_truncation": False,
     "model_lambda": 0.0,
     "collision_splits": False,
+    "failure_gamma": None,
 }
 """Each ``TreeConfig`` option that only the tree ensemble's loop runs, with its off value."""
 

@@ -149,6 +149,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "hold_crossings": (float, int, type(None)),
     "decision_from_terminal": bool,
     "decision_on_failure": bool,
+    "failure_gamma": (type(None),),
     "hold_terminals": (int, type(None)),
     "hold_after_truncation": bool,
     # needs the model, which turns the loop off (and it makes the agent a TreeEnsembleAgent)
@@ -245,6 +246,7 @@ def _agent_functions() -> dict[str, Any]:
     return {
         "SMDPAgent._run_episode": SMDPAgent._run_episode,
         "SMDPAgent._end_epoch": SMDPAgent._end_epoch,
+        "SMDPAgent.discount": vars(SMDPAgent)["discount"].fget,
         "SMDPAgent._end_held_run": SMDPAgent._end_held_run,
         "SMDPAgent._grow": SMDPAgent._grow,
         "PartitionTree.leaf_of": PartitionTree.leaf_of,
@@ -316,7 +318,8 @@ def _env_functions(base: Any) -> dict[str, Any]:
 
 FINGERPRINTS = {
     "SMDPAgent._run_episode": "0c3f07fce917b80a",
-    "SMDPAgent._end_epoch": "63b35a45d3bd9db8",
+    "SMDPAgent._end_epoch": "1e888688f9464870",  # part 19: self.discount (config.gamma here)
+    "SMDPAgent.discount": "b7470042f10fdf1a",
     "SMDPAgent._end_held_run": "d869d34667c3067f",
     "SMDPAgent._grow": "df200e3fc423ac39",
     "PartitionTree.leaf_of": "ee41c6188076754e",

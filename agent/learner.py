@@ -277,6 +277,12 @@ class SMDPAgent:
         self.episodes_done += 1
         return stats
 
+    @property
+    def discount(self) -> float:
+        """The discount of eqs. (6), (7), (9) now: ``TreeConfig.gamma`` (the tree ensemble's
+        loop may latch ``TreeConfig.failure_gamma`` instead)."""
+        return self.config.gamma
+
     def _end_epoch(
         self,
         leaf: int,
@@ -296,15 +302,16 @@ class SMDPAgent:
         cfg = self.config
         row = self.q[leaf]
         old = row[action]
-        returns = epoch_returns(rs, bootstrap, cfg.gamma)
+        gamma = self.discount
+        returns = epoch_returns(rs, bootstrap, gamma)
         new, errors = leaf_update(old, returns, cfg.alpha)
         if self._track_scale:
             self.scale.add(rs if cfg.scale_rule == "reward_median" else returns)
         model = self.model
         if model is not None and end_x is not None:
             before = max(row)
-            rewards = epoch_returns(rs, 0.0, cfg.gamma)
-            discounts = epoch_discounts(len(rs), cfg.gamma)
+            rewards = epoch_returns(rs, 0.0, gamma)
+            discounts = epoch_discounts(len(rs), gamma)
             tau = len(rs)
             end_leaf = -1 if terminated else self.partition.leaf_of(end_x)
             model.add(
@@ -639,6 +646,7 @@ class SMDPAgent:
                     "target_sum": getattr(self, "target_sum", 0.0),
                     "targets": getattr(self, "targets", 0),
                     "last_truncated": getattr(self, "last_truncated", False),
+                    "failure_discount": getattr(self, "failure_discount", False),
                 }
                 if self.config.model_lambda_episodes is not None and hasattr(self, "blend_state"):
                     learner["loop"]["blended"] = self.blend_state()
@@ -758,6 +766,10 @@ class SMDPAgent:
                 if not isinstance(cut, bool):
                     raise ValueError(f"learner loop last_truncated {cut!r} is not a bool")
                 setattr(agent, "last_truncated", cut)  # noqa: B010
+                latched = learner["loop"].get("failure_discount", False)  # older files: False
+                if not isinstance(latched, bool):
+                    raise ValueError(f"learner loop failure_discount {latched!r} is not a bool")
+                setattr(agent, "failure_discount", latched)  # noqa: B010
                 if "blended" in learner["loop"]:  # TreeConfig.model_lambda_episodes
                     load_blends = getattr(agent, "load_blend_state", None)
                     if load_blends is None:

@@ -76,7 +76,7 @@ class TreeAgent(SMDPAgent):
                 self.n_actions, self.partition.leaves(), self.q_init
             )
         optimism.tried(leaf, action)
-        moved = optimism.paid(max(epoch_returns(rs, 0.0, self.config.gamma)), self.q)
+        moved = optimism.paid(max(epoch_returns(rs, 0.0, self.discount)), self.q)
         if self.model is not None:
             tolerance = self._in_units(self.config.sweep_tolerance)
             for moved_leaf, change in moved.items():

@@ -80,6 +80,7 @@ class _Member(TreeAgent):
 
     def __init__(self, ensemble: TreeEnsembleAgent, shifts: list[float]) -> None:
         self._shifts = shifts
+        self._ensemble = ensemble
         low, high = ensemble.bounds
         super().__init__(
             ensemble.observation_space,
@@ -89,6 +90,11 @@ class _Member(TreeAgent):
             dataclasses.replace(ensemble.config, ensemble_trees=1, ensemble_decisions="any"),
             (low, high),
         )
+
+    @property
+    def discount(self) -> float:
+        """The ensemble's discount (``TreeConfig.failure_gamma`` latches for every tree)."""
+        return self._ensemble.discount
 
     def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
         return ShiftedPartitionTree(low, high, self.config, self._shifts, self.integer_inputs)
@@ -148,6 +154,16 @@ class TreeEnsembleAgent(TreeAgent):
         """The terminal steps' rewards (over :attr:`terminals_seen` of them), and the sum and
         count of the one-step targets of the steps that ended a non-terminal epoch
         (``TreeConfig.decision_on_failure``)."""
+        self.failure_discount = False
+        """Whether ``TreeConfig.failure_gamma`` has latched: the measure found the terminals
+        failures at the start of an episode, and the discount is failure_gamma from then on."""
+
+    @property
+    def discount(self) -> float:
+        """:attr:`SMDPAgent.discount`: ``TreeConfig.failure_gamma`` once latched
+        (:attr:`failure_discount`), else ``TreeConfig.gamma``."""
+        failure = self.config.failure_gamma
+        return failure if self.failure_discount and failure is not None else self.config.gamma
 
     def learn(
         self,
@@ -218,7 +234,7 @@ class TreeEnsembleAgent(TreeAgent):
         """:meth:`SMDPAgent._end_epoch`, and with ``TreeConfig.model_lambda`` the epoch kept
         for the episode's lambda-returns (:meth:`_blend_episode`)."""
         if self._trace is not None and end_x is not None:
-            start = epoch_returns(rs, 0.0, self.config.gamma)[0]
+            start = epoch_returns(rs, 0.0, self.discount)[0]
             self._trace.append((xs[0], action, start, len(rs), terminated, end_x, self._explored))
         return super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
 
@@ -252,7 +268,7 @@ class TreeEnsembleAgent(TreeAgent):
         bound = cfg.model_lambda_lower_bound
         kept = cfg.model_lambda_episodes
         actions = range(self.n_actions)
-        gamma = cfg.gamma
+        gamma = self.discount
         q = self.q
         leaf_of = self.partition.leaf_of
         touched: dict[tuple[int, int], None] = {}
@@ -377,14 +393,16 @@ class TreeEnsembleAgent(TreeAgent):
         crossings_cap = cfg.hold_crossings
         if crossings_cap is not None and self.crossings:
             hold_cap = self._crossings_hold_cap(crossings_cap)
+        if cfg.failure_gamma is not None and not self.failure_discount and self.terminals_fail:
+            self.failure_discount = True  # the latch: failure_gamma for the rest of the run
         if cfg.decision_on_failure:
             redecide = cfg.decision_steps is not None and self.terminals_fail
         else:
             redecide = cfg.decision_steps is not None and (
                 self.terminals_seen > 0 or not cfg.decision_from_terminal
             )
-        measure = cfg.decision_on_failure
-        gamma = cfg.gamma
+        measure = cfg.decision_on_failure or cfg.failure_gamma is not None
+        gamma = self.discount
         decide = cfg.decision_steps if redecide and cfg.decision_steps is not None else cap
         key = cfg.collision_key
         end_on_collision = cfg.end_epoch_on_collision
@@ -439,7 +457,7 @@ class TreeEnsembleAgent(TreeAgent):
                 inside = (
                     redecide and not hold and not changed and not (collided and end_on_collision)
                 )
-                if measure:  # decision_on_failure, before this epoch's updates
+                if measure:  # decision_on_failure, failure_gamma; before this epoch's updates
                     if terminated:
                         self.terminal_reward_sum += r
                     else:

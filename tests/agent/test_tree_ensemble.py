@@ -451,6 +451,82 @@ def test_decisions_on_failure_stay_shut_where_the_terminal_is_a_goal(tmp_path: A
     )
 
 
+def _discounting_agent(env: gym.Env, **changes: Any) -> TreeEnsembleAgent:
+    """Greedy on action 1 as :func:`_gated_agent`, gamma 0.5, with ``changes`` (the ensemble's
+    loop with or without them)."""
+    config = plain_config(gamma=0.5, **changes)
+    agent = TreeEnsembleAgent(env.observation_space, env.action_space, "greedy", 0, config)
+    for row in agent.q:
+        row[:] = [-1e6, 0.0]
+    return agent
+
+
+def test_the_failure_discount_latches_once_the_terminals_are_failures(tmp_path: Any) -> None:
+    agent = _discounting_agent(Fall(), failure_gamma=0.9)
+    plain = _discounting_agent(Fall())
+    # Episodes 0 and 1 are the run without the option (the measure opens after episode 1,
+    # as in test_decisions_on_failure_open_where_the_terminal_ends_positive_rewards)
+    for seed in (0, 1):
+        assert agent.learn(Fall(), 1, reset_seed=seed) == plain.learn(Fall(), 1, reset_seed=seed)
+        assert agent.q == plain.q
+        assert not agent.failure_discount
+        assert agent.discount == 0.5
+    assert agent.terminals_fail
+    # From episode 2 on the agent learns as one whose gamma is 0.9, from the same state
+    longer = _discounting_agent(Fall())
+    longer.q = [list(row) for row in agent.q]
+    longer.config = dataclasses.replace(longer.config, gamma=0.9)
+    latched = agent.learn(Fall(), 2, reset_seed=2)
+    assert [(s.steps, s.epochs) for s in latched] == [
+        (s.steps, s.epochs) for s in longer.learn(Fall(), 2, reset_seed=2)
+    ]
+    assert agent.failure_discount
+    assert agent.discount == 0.9
+    assert agent.q == longer.q
+    plain.learn(Fall(), 2, reset_seed=2)
+    assert agent.q != plain.q  # gamma 0.5 learns other values
+    # The latch survives a file, and stays shut in an agent that had not latched
+    loaded = TreeAgent.load(agent.save(tmp_path / "latched.npz"))
+    assert isinstance(loaded, TreeEnsembleAgent)
+    assert loaded.failure_discount
+    assert loaded.discount == 0.9
+    fresh = TreeAgent.load(_discounting_agent(Fall(), failure_gamma=0.9).save(tmp_path / "f.npz"))
+    assert isinstance(fresh, TreeEnsembleAgent)
+    assert not fresh.failure_discount
+    assert fresh.discount == 0.5
+
+
+def test_the_failure_discount_leaves_a_run_to_a_goal_as_it_was() -> None:
+    agent = _discounting_agent(Walk(), failure_gamma=0.9)  # -1 a step: the end is a goal
+    plain = _discounting_agent(Walk())
+    assert agent.learn(Walk(), 4, reset_seed=0) == plain.learn(Walk(), 4, reset_seed=0)
+    assert agent.q == plain.q
+    assert not agent.failure_discount
+    assert agent.discount == 0.5
+
+
+def test_every_tree_of_an_ensemble_takes_the_latched_discount() -> None:
+    agent = _discounting_agent(Fall(), failure_gamma=0.9, ensemble_trees=2)
+    member = agent.members[1]
+    assert member.discount == 0.5
+    agent.failure_discount = True
+    assert member.discount == 0.9
+
+
+def test_the_failure_discount_is_checked_by_name() -> None:
+    for bad in (1.5, -0.1, float("nan")):
+        with pytest.raises(ValueError, match=r"TreeConfig.failure_gamma must be in \[0.0, 1.0\]"):
+            TreeConfig(failure_gamma=bad)
+    for wrong in ("0.9", True):
+        with pytest.raises(TypeError, match=r"TreeConfig\.failure_gamma must be a number or None"):
+            TreeConfig(failure_gamma=wrong)  # type: ignore[arg-type]
+    config = TreeConfig(failure_gamma=0.9995)
+    assert config.loop_options() == {"failure_gamma": 0.9995}
+    assert tree_agent_class(config) is TreeEnsembleAgent
+    with pytest.raises(ValueError, match=r"failure_gamma = 0\.9995 needs agent\.tree_ensemble"):
+        TreeAgent(Walk().observation_space, Walk().action_space, "greedy", 0, config)
+
+
 def _edit_loop(source: Any, target: Any, name: str, value: object) -> Any:
     with np.load(source, allow_pickle=False) as data:
         arrays = {key: data[key].copy() for key in data.files}
@@ -471,6 +547,8 @@ def _edit_loop(source: Any, target: Any, name: str, value: object) -> Any:
         ("last_truncated", 1, r"learner loop last_truncated 1 is not a bool"),
         ("last_truncated", "false", r"learner loop last_truncated 'false' is not a bool"),
         ("last_truncated", None, r"learner loop last_truncated None is not a bool"),
+        ("failure_discount", 1, r"learner loop failure_discount 1 is not a bool"),
+        ("failure_discount", "true", r"learner loop failure_discount 'true' is not a bool"),
     ],
 )
 def test_a_damaged_failure_measure_in_a_file_is_refused_by_name(
