@@ -32,7 +32,10 @@ can build it by name::
   inputs when they are integers and the cells fit the leaf cap (part 15, "A table for integer
   inputs"; float inputs run as before), and untried actions valued at the largest return an
   epoch has paid (part 16, "Optimism for untried actions"; a task that pays at most 0 a step
-  runs as before). It runs on
+  runs as before), and a presplit along at most the first 4 of more than 8 inputs (part 17,
+  "Inputs with many dimensions"), and a discount of 0.9995 from the episode after the
+  terminals are measured failures (part 19, "A discount gated on failure"; a task whose
+  terminal is a goal runs as before). It runs on
   :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop, which those options need.
 """
 
@@ -102,7 +105,8 @@ GENERAL = Preset(
     "one set of defaults for every task: measured units, a model over the leaves, sweeping, "
     "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals "
     "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs, optimism for "
-    "untried actions, a presplit of at most the first 4 of more than 8 inputs",
+    "untried actions, a presplit of at most the first 4 of more than 8 inputs, gamma 0.9995 once "
+    "the terminals are measured failures",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -125,6 +129,7 @@ GENERAL = Preset(
         optimistic_untried=True,
         presplit_max_dimensions=8,
         presplit_beyond_dimensions=4,
+        failure_gamma=0.9995,
     ),
     "adaptive+tabu",
 )
@@ -140,11 +145,13 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     15: {"table_cells": None},
     16: {"optimistic_untried": False},
     17: {"presplit_max_dimensions": None, "presplit_beyond_dimensions": 0},
+    19: {"failure_gamma": None},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none).
 Part 17 changes only inputs of more than 8 dimensions, which part 16's preset refused above 16
-and presplit into 512 to 65,536 leaves from 9 to 16."""
+and presplit into 512 to 65,536 leaves from 9 to 16. Part 18 changed none; part 19 changes only
+runs whose terminals are measured failures (CartPole's fall, never a goal)."""
 
 
 def general_as_of(part: int) -> TreeConfig:

@@ -47,6 +47,9 @@ PARTS: dict[int, str] = {
     17: "presplit_max_dimensions 8, presplit_beyond_dimensions 4: only an input of more than 8 "
     "dimensions is presplit differently (part 16's preset refused more than 16); MountainCar, "
     "the maze and Taxi have at most 2, so their runs should be the same",
+    19: "failure_gamma 0.9995: each epoch's one-step target is summed for the failure measure "
+    "(one max over the next row); MountainCar's, the maze's and Taxi's terminals are goals, so "
+    "the latch stays shut and their runs should be the same",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

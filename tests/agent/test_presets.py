@@ -47,6 +47,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"table_cells"}  # issue 9, part 15
     others |= {"optimistic_untried"}  # issue 9, part 16
     others |= {"presplit_max_dimensions", "presplit_beyond_dimensions"}  # issue 9, part 17
+    others |= {"failure_gamma"}  # issue 9, part 19
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -61,6 +62,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.optimistic_untried is True  # part 16 ("Optimism for untried actions")
     # part 17 ("Inputs with many dimensions")
     assert (general.presplit_max_dimensions, general.presplit_beyond_dimensions) == (8, 4)
+    assert general.failure_gamma == 0.9995  # part 19 ("A discount gated on failure")
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -172,6 +174,17 @@ def test_part17_lidar_comparison_sets_the_preset_against_part_16s_without_a_pres
     assert data["experiment"]["seed"] == 17102
 
 
+def test_part19_classic_comparison_sets_the_preset_against_part_18s() -> None:
+    data = tomllib.loads((EXPERIMENT_DIR / "failure_gamma_classic.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    old = by_name["general-part18"]
+    assert old["exploration"] == preset("general").exploration
+    assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(18)
+    assert general_as_of(18) != preset("general").config
+    assert data["experiment"]["seed"] == 19101
+
+
 @pytest.mark.parametrize("kind", ["classic", "mazes"])
 def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) -> None:
     data = tomllib.loads((EXPERIMENT_DIR / f"model_split_from_terminal_{kind}.toml").read_text())
@@ -184,7 +197,9 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(17) == now
+    assert general_as_of(19) == now
+    now = dataclasses.replace(now, failure_gamma=None)
+    assert general_as_of(18) == general_as_of(17) == now
     now = dataclasses.replace(now, presplit_max_dimensions=None, presplit_beyond_dimensions=0)
     assert general_as_of(16) == now
     assert general_as_of(15) == dataclasses.replace(now, optimistic_untried=False)

@@ -483,6 +483,23 @@ def test_bad_presplit_limits_name_the_file_and_field(field: str, value: Any, def
     assert defect in message, message
 
 
+@pytest.mark.parametrize(
+    ("value", "defect"),
+    [
+        (1.5, "must be in [0.0, 1.0], got 1.5"),
+        (-0.5, "got -0.5"),
+        ("0.9995", "got '0.9995'"),
+        (True, "got true"),
+        ([0.9], "got [0.9]"),
+    ],
+)
+def test_a_bad_failure_discount_names_the_file_and_field(value: Any, defect: str) -> None:
+    """Part 19's option in a strategy table: every bad value is refused by name."""
+    message = _refusal({"name": "long", "preset": "general", "config": {"failure_gamma": value}})
+    assert "failure_gamma" in message, message
+    assert defect in message, message
+
+
 @pytest.mark.parametrize("name", ["general", "paper"])
 def test_an_observation_wider_than_an_agent_takes_names_the_strategy(name: str) -> None:
     """A maze's lidar of 70 rays is 72 inputs: refused when the run's agent is built."""
