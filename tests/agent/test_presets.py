@@ -174,15 +174,16 @@ def test_part17_lidar_comparison_sets_the_preset_against_part_16s_without_a_pres
     assert data["experiment"]["seed"] == 17102
 
 
-def test_part19_classic_comparison_sets_the_preset_against_part_18s() -> None:
-    data = tomllib.loads((EXPERIMENT_DIR / "failure_gamma_classic.toml").read_text())
+@pytest.mark.parametrize(("name", "seed"), [("classic", 19101), ("cartpole", 19102)])
+def test_part19_comparisons_set_the_preset_against_part_18s(name: str, seed: int) -> None:
+    data = tomllib.loads((EXPERIMENT_DIR / f"failure_gamma_{name}.toml").read_text())
     by_name = {s["name"]: s for s in data["strategy"]}
     assert by_name["general"] == {"name": "general", "preset": "general"}
     old = by_name["general-part18"]
     assert old["exploration"] == preset("general").exploration
     assert TreeConfig(**{**data.get("agent", {}), **old["config"]}) == general_as_of(18)
     assert general_as_of(18) != preset("general").config
-    assert data["experiment"]["seed"] == 19101
+    assert data["experiment"]["seed"] == seed
 
 
 @pytest.mark.parametrize("kind", ["classic", "mazes"])
