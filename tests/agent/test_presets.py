@@ -174,7 +174,9 @@ def test_part17_lidar_comparison_sets_the_preset_against_part_16s_without_a_pres
     assert data["experiment"]["seed"] == 17102
 
 
-@pytest.mark.parametrize(("name", "seed"), [("classic", 19101), ("cartpole", 19102)])
+@pytest.mark.parametrize(
+    ("name", "seed"), [("classic", 19101), ("cartpole", 19102), ("tasks", 19104)]
+)
 def test_part19_comparisons_set_the_preset_against_part_18s(name: str, seed: int) -> None:
     data = tomllib.loads((EXPERIMENT_DIR / f"failure_gamma_{name}.toml").read_text())
     by_name = {s["name"]: s for s in data["strategy"]}
