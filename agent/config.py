@@ -297,9 +297,10 @@ class TreeConfig:
     their goals in the mean) a longer horizon weighs a loss that comes long after its cause:
     gamma 0.9995 from the start solved 17 of 20 CartPole dev seeds against 13 of 20, but
     moved the dense dev mazes from 1.12x to 1.89x the optimum (docs/paper-notes.md, "A
-    discount gated on failure"). The model's stored epochs keep the discount they were stored with until they
-    leave its window; the reward unit (``scale_horizon`` None) and an optimistic start stay
-    at ``gamma``. Runs on :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
+    discount gated on failure"). The model's stored epochs keep the discount they were
+    stored with until they leave its window; the reward unit (``scale_horizon`` None) and an
+    optimistic start stay at ``gamma``. Runs on
+    :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
     hold_steps: int | None = None
     """A held exploratory run ends after this many steps (beyond the paper; None:
     ``max_epoch_steps``, which then caps unheld epochs only). Runs on
