@@ -301,6 +301,14 @@ class TreeConfig:
     stored with until they leave its window; the reward unit (``scale_horizon`` None) and an
     optimistic start stay at ``gamma``. Runs on
     :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop."""
+    failure_measure: str = "mean"
+    """When ``failure_gamma`` counts the terminals as failures (beyond the paper): ``"mean"``,
+    ``decision_on_failure``'s measure (their mean reward below the mean one-step target);
+    ``"every"``, every terminal so far (the largest terminal reward below the mean one-step
+    target), so a task whose episodes also end at a goal that pays more than going on
+    (FrozenLake's +1, Blackjack's won hand) never opens the latch. Where every terminal pays
+    alike (CartPole's fall) the two agree to the bit (docs/paper-notes.md, "A discount gated
+    on failure"). Needs ``failure_gamma``."""
     hold_steps: int | None = None
     """A held exploratory run ends after this many steps (beyond the paper; None:
     ``max_epoch_steps``, which then caps unheld epochs only). Runs on
@@ -444,6 +452,12 @@ class TreeConfig:
                 f"TreeConfig.optimistic_untried must be a bool, got {self.optimistic_untried!r}"
             )
         self._check_novelty()
+        _check_choice("failure_measure", self.failure_measure, ("mean", "every"))
+        if self.failure_measure != "mean" and self.failure_gamma is None:
+            raise ValueError(
+                f"TreeConfig.failure_measure = {self.failure_measure!r} needs failure_gamma "
+                "(it says when failure_gamma latches)"
+            )
         if self.decision_on_failure and self.decision_steps is None:
             raise ValueError(
                 "TreeConfig.decision_on_failure = True needs decision_steps (it gates them)"

@@ -150,6 +150,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "decision_from_terminal": bool,
     "decision_on_failure": bool,
     "failure_gamma": (type(None),),
+    "failure_measure": ("mean", "every"),  # read only with failure_gamma, refused above
     "hold_terminals": (int, type(None)),
     "hold_after_truncation": bool,
     # needs the model, which turns the loop off (and it makes the agent a TreeEnsembleAgent)

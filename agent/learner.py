@@ -647,6 +647,7 @@ class SMDPAgent:
                     "targets": getattr(self, "targets", 0),
                     "last_truncated": getattr(self, "last_truncated", False),
                     "failure_discount": getattr(self, "failure_discount", False),
+                    "terminal_reward_max": getattr(self, "terminal_reward_max", None),
                 }
                 if self.config.model_lambda_episodes is not None and hasattr(self, "blend_state"):
                     learner["loop"]["blended"] = self.blend_state()
@@ -770,6 +771,15 @@ class SMDPAgent:
                 if not isinstance(latched, bool):
                     raise ValueError(f"learner loop failure_discount {latched!r} is not a bool")
                 setattr(agent, "failure_discount", latched)  # noqa: B010
+                top = learner["loop"].get("terminal_reward_max")  # older files: None ("mean")
+                if top is not None:
+                    where = "learner loop terminal_reward_max"
+                    if isinstance(top, bool) or not isinstance(top, int | float):
+                        raise ValueError(f"{where} {top!r} is not a number")
+                    if not math.isfinite(top):
+                        raise ValueError(f"{where} {top!r} is not finite")
+                    top = float(top)
+                setattr(agent, "terminal_reward_max", top)  # noqa: B010
                 if "blended" in learner["loop"]:  # TreeConfig.model_lambda_episodes
                     load_blends = getattr(agent, "load_blend_state", None)
                     if load_blends is None:

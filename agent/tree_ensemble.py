@@ -154,6 +154,9 @@ class TreeEnsembleAgent(TreeAgent):
         """The terminal steps' rewards (over :attr:`terminals_seen` of them), and the sum and
         count of the one-step targets of the steps that ended a non-terminal epoch
         (``TreeConfig.decision_on_failure``)."""
+        self.terminal_reward_max: float | None = None
+        """The largest terminal reward seen (None before the first; ``failure_measure``
+        "every")."""
         self.failure_discount = False
         """Whether ``TreeConfig.failure_gamma`` has latched: the measure found the terminals
         failures at the start of an episode, and the discount is failure_gamma from then on."""
@@ -220,6 +223,14 @@ class TreeEnsembleAgent(TreeAgent):
         if self.terminals_seen == 0 or self.targets == 0:
             return False
         return self.terminal_reward_sum / self.terminals_seen < self.target_sum / self.targets
+
+    @property
+    def every_terminal_fails(self) -> bool:
+        """``TreeConfig.failure_measure`` "every": the largest terminal reward seen is below
+        the mean one-step target of :attr:`terminals_fail` (False before either is seen)."""
+        if self.terminal_reward_max is None or self.targets == 0:
+            return False
+        return self.terminal_reward_max < self.target_sum / self.targets
 
     def _end_epoch(
         self,
@@ -393,8 +404,10 @@ class TreeEnsembleAgent(TreeAgent):
         crossings_cap = cfg.hold_crossings
         if crossings_cap is not None and self.crossings:
             hold_cap = self._crossings_hold_cap(crossings_cap)
-        if cfg.failure_gamma is not None and not self.failure_discount and self.terminals_fail:
-            self.failure_discount = True  # the latch: failure_gamma for the rest of the run
+        if cfg.failure_gamma is not None and not self.failure_discount:
+            every = cfg.failure_measure == "every"
+            if self.every_terminal_fails if every else self.terminals_fail:
+                self.failure_discount = True  # the latch: failure_gamma for the rest of the run
         if cfg.decision_on_failure:
             redecide = cfg.decision_steps is not None and self.terminals_fail
         else:
@@ -460,6 +473,8 @@ class TreeEnsembleAgent(TreeAgent):
                 if measure:  # decision_on_failure, failure_gamma; before this epoch's updates
                     if terminated:
                         self.terminal_reward_sum += r
+                        top = self.terminal_reward_max
+                        self.terminal_reward_max = r if top is None or r > top else top
                     else:
                         self.target_sum += r + gamma * max(self.mean_row(nxt))
                         self.targets += 1

@@ -505,6 +505,47 @@ def test_the_failure_discount_leaves_a_run_to_a_goal_as_it_was() -> None:
     assert agent.discount == 0.5
 
 
+class FallOrGoal(Fall):
+    """Fall, whose first episode ends at a goal that pays +5 on its terminal step."""
+
+    episodes = 0
+
+    def reset(self, *, seed: int | None = None, options: Any = None) -> tuple[np.ndarray, dict]:
+        FallOrGoal.episodes += 1
+        return super().reset(seed=seed, options=options)
+
+    def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict]:
+        obs, reward, terminated, truncated, info = super().step(action)
+        goal = terminated and FallOrGoal.episodes == 1
+        return obs, 5.0 if goal else reward, terminated, truncated, info
+
+
+def test_every_terminal_must_fail_for_the_every_measure() -> None:
+    latched = {}
+    for measure in ("mean", "every"):
+        FallOrGoal.episodes = 0
+        agent = _discounting_agent(FallOrGoal(), failure_gamma=0.9, failure_measure=measure)
+        agent.learn(FallOrGoal(), 12, reset_seed=0)
+        assert agent.terminal_reward_max == 5.0
+        assert agent.terminals_fail  # the falls outweigh the one goal in the mean
+        assert not agent.every_terminal_fails  # the goal paid more than going on
+        latched[measure] = agent.failure_discount
+    assert latched == {"mean": True, "every": False}
+
+
+def test_the_every_measure_is_the_mean_where_every_terminal_pays_alike(tmp_path: Any) -> None:
+    mean = _discounting_agent(Fall(), failure_gamma=0.9)
+    every = _discounting_agent(Fall(), failure_gamma=0.9, failure_measure="every")
+    assert every.learn(Fall(), 4, reset_seed=0) == mean.learn(Fall(), 4, reset_seed=0)
+    assert every.q == mean.q
+    assert every.failure_discount
+    assert mean.failure_discount
+    loaded = TreeAgent.load(every.save(tmp_path / "every.npz"))
+    assert isinstance(loaded, TreeEnsembleAgent)
+    assert loaded.terminal_reward_max == 1.0
+    assert loaded.every_terminal_fails
+
+
 def test_every_tree_of_an_ensemble_takes_the_latched_discount() -> None:
     agent = _discounting_agent(Fall(), failure_gamma=0.9, ensemble_trees=2)
     member = agent.members[1]
@@ -520,6 +561,10 @@ def test_the_failure_discount_is_checked_by_name() -> None:
     for wrong in ("0.9", True):
         with pytest.raises(TypeError, match=r"TreeConfig\.failure_gamma must be a number or None"):
             TreeConfig(failure_gamma=wrong)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=r"failure_measure must be one of \['mean', 'every'\]"):
+        TreeConfig(failure_gamma=0.9, failure_measure="max")
+    with pytest.raises(ValueError, match="failure_measure = 'every' needs failure_gamma"):
+        TreeConfig(failure_measure="every")
     config = TreeConfig(failure_gamma=0.9995)
     assert config.loop_options() == {"failure_gamma": 0.9995}
     assert tree_agent_class(config) is TreeEnsembleAgent
@@ -549,6 +594,8 @@ def _edit_loop(source: Any, target: Any, name: str, value: object) -> Any:
         ("last_truncated", None, r"learner loop last_truncated None is not a bool"),
         ("failure_discount", 1, r"learner loop failure_discount 1 is not a bool"),
         ("failure_discount", "true", r"learner loop failure_discount 'true' is not a bool"),
+        ("terminal_reward_max", "1", r"learner loop terminal_reward_max '1' is not a number"),
+        ("terminal_reward_max", False, r"terminal_reward_max False is not a number"),
     ],
 )
 def test_a_damaged_failure_measure_in_a_file_is_refused_by_name(

@@ -500,6 +500,18 @@ def test_a_bad_failure_discount_names_the_file_and_field(value: Any, defect: str
     assert defect in message, message
 
 
+@pytest.mark.parametrize(
+    ("value", "defect"),
+    [("max", "must be one of ['mean', 'every'], got 'max'"), (3, "got 3"), ([], "got []")],
+)
+def test_a_bad_failure_measure_names_the_file_and_field(value: Any, defect: str) -> None:
+    """Part 20's option in a strategy table: refused by name."""
+    config = {"failure_measure": value}
+    message = _refusal({"name": "long", "preset": "general", "config": config})
+    assert "failure_measure" in message, message
+    assert defect in message, message
+
+
 @pytest.mark.parametrize("name", ["general", "paper"])
 def test_an_observation_wider_than_an_agent_takes_names_the_strategy(name: str) -> None:
     """A maze's lidar of 70 rays is 72 inputs: refused when the run's agent is built."""
