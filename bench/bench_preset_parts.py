@@ -50,6 +50,8 @@ PARTS: dict[int, str] = {
     19: "failure_gamma 0.9995: each epoch's one-step target is summed for the failure measure "
     "(one max over the next row); MountainCar's, the maze's and Taxi's terminals are goals, so "
     "the latch stays shut and their runs should be the same",
+    20: "failure_measure 'every': the largest terminal reward is kept beside the sum; the latch "
+    "stays shut on all three tasks, so their runs should be the same",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

@@ -48,6 +48,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"optimistic_untried"}  # issue 9, part 16
     others |= {"presplit_max_dimensions", "presplit_beyond_dimensions"}  # issue 9, part 17
     others |= {"failure_gamma"}  # issue 9, part 19
+    others |= {"failure_measure"}  # issue 9, part 20
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -63,6 +64,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     # part 17 ("Inputs with many dimensions")
     assert (general.presplit_max_dimensions, general.presplit_beyond_dimensions) == (8, 4)
     assert general.failure_gamma == 0.9995  # part 19 ("A discount gated on failure")
+    assert general.failure_measure == "every"  # part 20 (the same section)
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -200,8 +202,9 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(19) == now
-    now = dataclasses.replace(now, failure_gamma=None)
+    assert general_as_of(20) == now
+    assert general_as_of(19) == dataclasses.replace(now, failure_measure="mean")
+    now = dataclasses.replace(now, failure_gamma=None, failure_measure="mean")
     assert general_as_of(18) == general_as_of(17) == now
     now = dataclasses.replace(now, presplit_max_dimensions=None, presplit_beyond_dimensions=0)
     assert general_as_of(16) == now
