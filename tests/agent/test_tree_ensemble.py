@@ -550,6 +550,25 @@ def test_the_every_measure_is_the_mean_where_every_terminal_pays_alike(tmp_path:
     assert loaded.every_terminal_fails
 
 
+def test_a_file_without_the_largest_terminal_reward_loads_as_none(tmp_path: Any) -> None:
+    """Files written before part 20 have no terminal_reward_max; their config's measure is
+    "mean", which does not read it."""
+    agent = _discounting_agent(Fall(), failure_gamma=0.9)
+    agent.learn(Fall(), 2, reset_seed=0)
+    good = agent.save(tmp_path / "good.npz")
+    with np.load(good, allow_pickle=False) as data:
+        arrays = {key: data[key].copy() for key in data.files}
+    meta = json.loads(arrays.pop("metadata").tobytes())
+    del meta["learner"]["loop"]["terminal_reward_max"]
+    older = tmp_path / "older.npz"
+    np.savez(older, metadata=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **arrays)
+    loaded = TreeAgent.load(older)
+    assert isinstance(loaded, TreeEnsembleAgent)
+    assert loaded.terminal_reward_max is None
+    assert agent.terminal_reward_max == 1.0
+    assert loaded.q == agent.q
+
+
 def test_every_tree_of_an_ensemble_takes_the_latched_discount() -> None:
     agent = _discounting_agent(Fall(), failure_gamma=0.9, ensemble_trees=2)
     member = agent.members[1]
