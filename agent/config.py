@@ -223,6 +223,16 @@ class TreeConfig:
     IV.B's buffer) instead of handing them to the children as ``children_inherit_samples``
     does for the paper's splits. The prototype did this; measured in docs/paper-notes.md,
     "Model-driven splits"."""
+    policy_splits: bool = False
+    """Policy splits (beyond the paper; :func:`agent.model_split.choose_policy_split`): when
+    the model split of (leaf, a) finds no cut, the leaf is also cut where the greedy choice
+    between a and another action b flips. The stored epochs of both (each at least
+    ``model_split_epochs``) are valued by eq. (8) under the current values; a cut along one
+    input is taken if the advantage of a over b has opposite signs on its two sides and
+    changes by at least ``model_split_gap`` units and ``model_split_t`` pooled standard
+    errors (Munos and Moore's policy-disagreement splits, 2002). One leaf's average otherwise
+    ranks the actions for the whole leaf, where the better action changes inside it (the
+    moment to reverse on MountainCar). Needs ``model_split_epochs``. False: off."""
     collision_splits: bool = False
     """Collision splits (beyond the paper; :mod:`agent.collision_split`): the model of
     ``planning = "sweep"`` marks each stored epoch that ended on a collision (the env's
@@ -595,11 +605,12 @@ class TreeConfig:
                 or value < 0.0
             ):
                 raise ValueError(f"TreeConfig.{name} must be a finite number >= 0, got {value!r}")
-        for name in ("model_split_drops_pairs", "model_split_from_terminal"):
+        dependent = ("model_split_drops_pairs", "model_split_from_terminal", "policy_splits")
+        for name in dependent:
             if not isinstance(getattr(self, name), bool):
                 raise TypeError(f"TreeConfig.{name} must be a bool, got {getattr(self, name)!r}")
         if epochs is None:
-            for name in ("model_split_drops_pairs", "model_split_from_terminal"):
+            for name in dependent:
                 if getattr(self, name):
                     raise ValueError(
                         f"TreeConfig.{name} = True needs model_split_epochs (it changes the "

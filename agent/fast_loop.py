@@ -138,6 +138,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_split_t": (float, int),
     "model_split_drops_pairs": bool,
     "model_split_from_terminal": bool,
+    "policy_splits": bool,
     "novelty_cells": (int, type(None)),
     "novelty_terminals": int,
     "novelty_episodes": (int, type(None)),

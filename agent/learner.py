@@ -23,7 +23,7 @@ from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments
 from agent.exploration import Exploration, make_exploration
 from agent.inspection import LeafInfo, render_partition
 from agent.leaf_model import LeafModel
-from agent.model_split import choose_model_split
+from agent.model_split import FloatArray, choose_model_split, choose_policy_split
 from agent.novelty import NoveltyGrid
 from agent.optimism import UntriedOptimism
 from agent.partition import Partition
@@ -380,11 +380,53 @@ class SMDPAgent:
             min_gap=self._in_units(cfg.model_split_gap),
             min_t=cfg.model_split_t,
         )
+        if choice is None and cfg.policy_splits:
+            choice = self._policy_split(leaf, action, firsts, targets, (low, high, min_width))
         if choice is None:
             return None
         if cfg.model_split_drops_pairs:
             return partition.split(leaf, *choice)
         return partition.split_with_samples(leaf, *choice)
+
+    def _policy_split(
+        self,
+        leaf: int,
+        action: int,
+        firsts: list[list[float]],
+        targets: list[float],
+        box: tuple[FloatArray, FloatArray, FloatArray],
+    ) -> tuple[int, float] | None:
+        """``TreeConfig.policy_splits``: the cut of ``leaf`` where the greedy choice between
+        ``action`` (its stored ``firsts`` and eq. (8) ``targets``) and another action with at
+        least ``model_split_epochs`` stored epochs flips (:func:`agent.model_split.
+        choose_policy_split`); the largest t over the other actions, the lower action on a
+        tie. None when no other action has a crossing."""
+        cfg = self.config
+        model = self.model
+        assert model is not None
+        assert cfg.model_split_epochs is not None
+        low, high, min_width = box
+        mine = np.asarray(firsts, dtype=np.float64)
+        mine_targets = np.asarray(targets, dtype=np.float64)
+        best: tuple[float, int, float] | None = None
+        for other in range(model.n_actions):
+            if other == action or model.count(leaf, other) < cfg.model_split_epochs:
+                continue
+            other_firsts, other_targets = model.targets(leaf, other, self.q)
+            found = choose_policy_split(
+                mine,
+                mine_targets,
+                np.asarray(other_firsts, dtype=np.float64),
+                np.asarray(other_targets, dtype=np.float64),
+                low,
+                high,
+                min_width,
+                min_gap=self._in_units(cfg.model_split_gap),
+                min_t=cfg.model_split_t,
+            )
+            if found is not None and (best is None or found[0] > best[0]):
+                best = found
+        return None if best is None else (best[1], best[2])
 
     def _novel_end(self, xs: list[list[float]], end_x: list[float], terminated: bool) -> bool:
         """``TreeConfig.novelty_cells``: count the epoch's inputs and say whether it ended in a

@@ -95,3 +95,98 @@ def choose_model_split(
             if best is None or gain > best[0]:
                 best = (gain, dim, value)
     return None if best is None else (best[1], best[2])
+
+
+def choose_policy_split(
+    firsts: FloatArray,
+    targets: FloatArray,
+    other_firsts: FloatArray,
+    other_targets: FloatArray,
+    low: FloatArray,
+    high: FloatArray,
+    min_width: FloatArray,
+    *,
+    min_gap: float,
+    min_t: float,
+) -> tuple[float, int, float] | None:
+    """The (t, dimension, value) of the policy split of one leaf between actions a and b, or
+    None (``TreeConfig.policy_splits``).
+
+    Args:
+        firsts, targets: the stored epochs of a: ``(n_a, d)`` first inputs and ``(n_a,)``
+            eq. (8) targets under the current values.
+        other_firsts, other_targets: the same for b.
+        low, high, min_width: the leaf's box and the narrowest child allowed (``(d,)``).
+        min_gap: least change of the advantage across the cut (reward units).
+        min_t: least change in pooled standard errors.
+
+    A cut along one input divides both actions' epochs. With the mean targets of a and b on
+    each side, the advantages ``d_L = a_L - b_L`` and ``d_R = a_R - b_R`` must have opposite
+    signs (eq. (11)'s greedy choice between a and b flips across the cut), each side must hold
+    at least :data:`MIN_SIDE` epochs of each action, each child must be at least
+    ``min_width`` wide, and ``|d_L - d_R|`` must be at least ``min_gap`` and at least
+    ``min_t`` standard errors (the variance pooled within the four groups, ``n - 4`` degrees
+    of freedom; ``inf`` when every group agrees within itself). Among the admissible cuts
+    the largest t wins; ties go to the lower dimension, then the lower value. This is the
+    policy-disagreement split of Munos and Moore (2002, "Variable resolution discretization
+    in optimal control"), read on the stored epochs.
+    """
+    n_a, n_b = len(targets), len(other_targets)
+    n = n_a + n_b
+    if n_a < 2 * MIN_SIDE or n_b < 2 * MIN_SIDE:
+        return None
+    xs = np.concatenate([firsts, other_firsts])
+    ys = np.concatenate([targets, other_targets])
+    is_a = np.concatenate([np.ones(n_a), np.zeros(n_b)])
+    order = np.argsort(xs, axis=0, kind="stable")  # (n, d): each input's order
+    x = np.take_along_axis(xs, order, axis=0)
+    y = ys[order]
+    in_a = is_a[order]
+    in_b = 1.0 - in_a
+    # left-side sums at each cut i (between sorted positions i and i + 1)
+    count_a = np.cumsum(in_a, axis=0)[:-1]
+    count_b = np.cumsum(in_b, axis=0)[:-1]
+    sum_a = np.cumsum(y * in_a, axis=0)[:-1]
+    sum_b = np.cumsum(y * in_b, axis=0)[:-1]
+    square_a = np.cumsum(y * y * in_a, axis=0)[:-1]
+    square_b = np.cumsum(y * y * in_b, axis=0)[:-1]
+    total_a, total_b = float(targets.sum()), float(other_targets.sum())
+    total_square_a = float(np.dot(targets, targets))
+    total_square_b = float(np.dot(other_targets, other_targets))
+    groups = (
+        (count_a, sum_a, square_a),
+        (count_b, sum_b, square_b),
+        (n_a - count_a, total_a - sum_a, total_square_a - square_a),
+        (n_b - count_b, total_b - sum_b, total_square_b - square_b),
+    )
+    value = 0.5 * (x[:-1] + x[1:])
+    ok = (x[:-1] != x[1:]) & (value - low >= min_width) & (high - value >= min_width)
+    for count, _, _ in groups:
+        ok &= count >= MIN_SIDE
+    if not ok.any():
+        return None
+    safe = [np.maximum(count, 1.0) for count, _, _ in groups]
+    means = [total / c for (_, total, _), c in zip(groups, safe, strict=True)]
+    within = sum(
+        square - count * mean * mean for (count, _, square), mean in zip(groups, means, strict=True)
+    )
+    advantage_left, advantage_right = means[0] - means[1], means[2] - means[3]
+    change = np.abs(advantage_left - advantage_right)
+    spread = np.sqrt(np.maximum(within, 0.0) / (n - 4))
+    error = spread * np.sqrt(sum(1.0 / c for c in safe))
+    with np.errstate(divide="ignore"):
+        t = np.where(error > 0.0, change / np.where(error > 0.0, error, 1.0), math.inf)
+    ok &= (advantage_left * advantage_right < 0.0) & (change >= min_gap) & (t >= min_t)
+    if not ok.any():
+        return None
+    score = np.where(ok, t, -1.0)
+    # the largest t; ties: the lower dimension, then the lower value (the cuts of one input
+    # are in increasing order, and argmax takes the first)
+    best_t = float(score.max())
+    best: tuple[float, int, float] | None = None
+    for dim in range(xs.shape[1]):
+        hits = np.flatnonzero(score[:, dim] == best_t)
+        if hits.size:
+            best = (best_t, dim, float(value[hits[0], dim]))
+            break
+    return best
