@@ -135,6 +135,9 @@ def choose_policy_split(
     n = n_a + n_b
     if n_a < 2 * MIN_SIDE or n_b < 2 * MIN_SIDE:
         return None
+    # |d_L - d_R| = |(a_L - a_R) - (b_L - b_R)| is at most the sum of the targets' ranges
+    if float(np.ptp(targets)) + float(np.ptp(other_targets)) < min_gap:
+        return None
     xs = np.concatenate([firsts, other_firsts])
     ys = np.concatenate([targets, other_targets])
     is_a = np.concatenate([np.ones(n_a), np.zeros(n_b)])
