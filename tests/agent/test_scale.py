@@ -9,7 +9,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from agent import TreeAgent, TreeConfig
+from agent import TreeAgent, TreeConfig, preset
 from agent.scale import EXACT_VALUES, ReturnScale, RewardScale
 
 
@@ -132,3 +132,35 @@ def test_reward_units_are_not_invariant(make_corridor: Callable[..., Any]) -> No
         return agent.n_leaves
 
     assert leaves(1.0) != leaves(100.0)
+
+
+def _general_run(task: str, episodes: int, factor: float) -> tuple[Any, list[int]]:
+    actions: list[int] = []
+
+    class Record(gym.Wrapper):
+        def step(self, action: int) -> Any:
+            actions.append(int(action))
+            return self.env.step(action)
+
+    env = Record(gym.wrappers.TransformReward(gym.make(task), lambda r: factor * r))
+    agent = preset("general").agent(env.observation_space, env.action_space, seed=3)
+    agent.learn(env, episodes, reset_seed=5)
+    return agent, actions
+
+
+@pytest.mark.parametrize(("task", "episodes"), [("MountainCar-v0", 60), ("CartPole-v1", 150)])
+@pytest.mark.parametrize("factor", [1 / 128, 512.0])
+def test_the_general_preset_is_the_same_agent_whatever_the_reward_scale(
+    task: str, episodes: int, factor: float
+) -> None:
+    # every option of the general preset reads rewards through its measured unit, so a
+    # reward multiplied by a power of two (exact in floating point) gives the same actions,
+    # the same tree, the same discount (CartPole's failure latch opens the same) and values
+    # multiplied by the factor
+    base, base_actions = _general_run(task, episodes, 1.0)
+    scaled, actions = _general_run(task, episodes, factor)
+    assert base.n_leaves > 16  # the tree grew past its presplit
+    assert actions == base_actions
+    assert scaled.n_leaves == base.n_leaves
+    assert scaled.discount == base.discount == (0.9995 if task == "CartPole-v1" else 0.999)
+    assert np.asarray(scaled.q) == pytest.approx(factor * np.asarray(base.q), rel=1e-12)
