@@ -522,3 +522,35 @@ def test_an_observation_wider_than_an_agent_takes_names_the_strategy(name: str) 
     with pytest.raises(ConfigError, match=r"\[strategy 'wide'\].*72 dimensions, at most 64"):
         factory.make_agent(config, config.strategy("wide"), env, seed=0)
     env.close()
+
+
+@pytest.mark.parametrize(
+    ("strategy", "defect"),
+    [
+        (
+            {"name": "flips", "preset": "general", "config": {"policy_splits": 1}},
+            "policy_splits: expected true or false, got 1",
+        ),
+        (
+            {"name": "flips", "preset": "general", "config": {"policy_splits": "no"}},
+            "policy_splits: expected true or false, got 'no'",
+        ),
+        (
+            {"name": "flips", "preset": "general", "config": {"policy_splits": [True]}},
+            "policy_splits: expected true or false, got [True]",
+        ),
+        (
+            {"name": "flips", "preset": "general", "config": {"model_split_epochs": None}},
+            "policy_splits = True needs model_split_epochs",
+        ),
+        (
+            {"name": "flips", "config": {"planning": "sweep", "policy_splits": True}},
+            "policy_splits = True needs model_split_epochs",
+        ),
+    ],
+)
+def test_bad_policy_splits_name_the_file_and_field(strategy: dict[str, Any], defect: str) -> None:
+    """Part 21's option in a strategy table: every bad value is refused by name, and the
+    general preset without model splits names the option that needs them."""
+    message = _refusal(strategy)
+    assert defect in message, message
