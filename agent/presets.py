@@ -106,7 +106,7 @@ GENERAL = Preset(
     "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals "
     "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs, optimism for "
     "untried actions, a presplit of at most the first 4 of more than 8 inputs, gamma 0.9995 once "
-    "every terminal is measured a failure, policy splits",
+    "every terminal is measured a failure",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -131,7 +131,6 @@ GENERAL = Preset(
         presplit_beyond_dimensions=4,
         failure_gamma=0.9995,
         failure_measure="every",
-        policy_splits=True,
     ),
     "adaptive+tabu",
 )
@@ -149,15 +148,15 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     17: {"presplit_max_dimensions": None, "presplit_beyond_dimensions": 0},
     19: {"failure_gamma": None},
     20: {"failure_measure": "mean"},
-    21: {"policy_splits": False},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none).
 Part 17 changes only inputs of more than 8 dimensions, which part 16's preset refused above 16
 and presplit into 512 to 65,536 leaves from 9 to 16. Part 18 changed none; part 19 changes only
 runs whose terminals are measured failures (CartPole's fall, never a goal); part 20 keeps the
-latch shut where any terminal paid more than going on (FrozenLake's goal); part 21 adds policy
-splits (a leaf cut where the greedy choice between two actions flips)."""
+latch shut where any terminal paid more than going on (FrozenLake's goal). Part 21's policy
+splits were adopted on 20 dev seeds and withdrawn on 20 more (docs/paper-notes.md, "Policy
+splits"), so it changed none."""
 
 
 def general_as_of(part: int) -> TreeConfig:

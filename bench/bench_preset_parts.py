@@ -52,9 +52,6 @@ PARTS: dict[int, str] = {
     "the latch stays shut and their runs should be the same",
     20: "failure_measure 'every': the largest terminal reward is kept beside the sum; the latch "
     "stays shut on all three tasks, so their runs should be the same",
-    21: "policy_splits: when a model split finds no cut, the stored epochs of each other action "
-    "with 8 or more are valued and every cut along every input is tested against them, in "
-    "NumPy; the tree grown changes with it",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

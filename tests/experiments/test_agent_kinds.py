@@ -540,7 +540,11 @@ def test_an_observation_wider_than_an_agent_takes_names_the_strategy(name: str) 
             "policy_splits: expected true or false, got [True]",
         ),
         (
-            {"name": "flips", "preset": "general", "config": {"model_split_epochs": None}},
+            {
+                "name": "flips",
+                "preset": "general",
+                "config": {"model_split_epochs": None, "policy_splits": True},
+            },
             "policy_splits = True needs model_split_epochs",
         ),
         (
@@ -550,7 +554,7 @@ def test_an_observation_wider_than_an_agent_takes_names_the_strategy(name: str) 
     ],
 )
 def test_bad_policy_splits_name_the_file_and_field(strategy: dict[str, Any], defect: str) -> None:
-    """Part 21's option in a strategy table: every bad value is refused by name, and the
-    general preset without model splits names the option that needs them."""
+    """Part 21's option in a strategy table: every bad value is refused by name, and without
+    model splits the option that needs them is named."""
     message = _refusal(strategy)
     assert defect in message, message
