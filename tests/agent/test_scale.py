@@ -164,3 +164,41 @@ def test_the_general_preset_is_the_same_agent_whatever_the_reward_scale(
     assert scaled.n_leaves == base.n_leaves
     assert scaled.discount == base.discount == (0.9995 if task == "CartPole-v1" else 0.999)
     assert np.asarray(scaled.q) == pytest.approx(factor * np.asarray(base.q), rel=1e-12)
+
+
+def _general_run_in_units(factor: float, episodes: int = 60) -> tuple[Any, list[int]]:
+    actions: list[int] = []
+
+    class Record(gym.Wrapper):
+        def step(self, action: int) -> Any:
+            actions.append(int(action))
+            return self.env.step(action)
+
+    car = gym.make("MountainCar-v0")
+    box = car.observation_space
+    space = gym.spaces.Box(box.low * factor, box.high * factor, dtype=np.float32)
+    env = Record(
+        gym.wrappers.TransformObservation(car, lambda o: (o * factor).astype(np.float32), space)
+    )
+    agent = preset("general").agent(env.observation_space, env.action_space, seed=3)
+    agent.learn(env, episodes, reset_seed=5)
+    return agent, actions
+
+
+@pytest.mark.parametrize("factor", [1 / 64, 256.0])
+def test_the_general_preset_is_the_same_agent_whatever_the_observation_units(
+    factor: float,
+) -> None:
+    # positions in metres or millimetres: every width the tree uses is a fraction of the
+    # observation box, so inputs (and bounds) times a power of two give the same actions and
+    # the same tree, with every cut moved by the factor
+    base, base_actions = _general_run_in_units(1.0)
+    scaled, actions = _general_run_in_units(factor)
+    assert base.n_leaves > 16
+    assert actions == base_actions
+    assert np.asarray(scaled.q) == pytest.approx(np.asarray(base.q), rel=1e-12)
+    for leaf in base.partition.leaves():
+        low, high = base.partition.leaf_bounds(leaf)
+        low_scaled, high_scaled = scaled.partition.leaf_bounds(leaf)
+        assert np.asarray(low_scaled) == pytest.approx(factor * np.asarray(low))
+        assert np.asarray(high_scaled) == pytest.approx(factor * np.asarray(high))
