@@ -232,7 +232,9 @@ class TreeConfig:
     changes by at least ``model_split_gap`` units and ``model_split_t`` pooled standard
     errors (Munos and Moore's policy-disagreement splits, 2002). One leaf's average otherwise
     ranks the actions for the whole leaf, where the better action changes inside it (the
-    moment to reverse on MountainCar). Needs ``model_split_epochs``. False: off."""
+    moment to reverse on MountainCar). Needs ``model_split_epochs``. False: off; measured and
+    not adopted in the general preset (docs/paper-notes.md, "Policy splits": no gain shown
+    over 40 MountainCar dev seeds)."""
     collision_splits: bool = False
     """Collision splits (beyond the paper; :mod:`agent.collision_split`): the model of
     ``planning = "sweep"`` marks each stored epoch that ended on a collision (the env's
