@@ -408,6 +408,7 @@ class SMDPAgent:
         low, high, min_width = box
         mine = np.asarray(firsts, dtype=np.float64)
         mine_targets = np.asarray(targets, dtype=np.float64)
+        min_gap = self._in_units(cfg.model_split_gap)
         best: tuple[float, int, float] | None = None
         for other in range(model.n_actions):
             if other == action or model.count(leaf, other) < cfg.model_split_epochs:
@@ -421,7 +422,7 @@ class SMDPAgent:
                 low,
                 high,
                 min_width,
-                min_gap=self._in_units(cfg.model_split_gap),
+                min_gap=min_gap,
                 min_t=cfg.model_split_t,
             )
             if found is not None and (best is None or found[0] > best[0]):
