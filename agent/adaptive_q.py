@@ -61,7 +61,7 @@ class BoxTree:
         """-1 for a leaf, else the id of the first of its 2^d children."""
         self.n_leaves = 1
 
-    def leaf_of(self, x: list[float]) -> int:
+    def leaf_of(self, x: Sequence[float]) -> int:
         """The leaf box holding ``x`` (children are numbered by the bits of x >= midpoint)."""
         node = 0
         first = self.first_child

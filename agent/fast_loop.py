@@ -324,20 +324,20 @@ FINGERPRINTS = {
     "SMDPAgent.discount": "b7470042f10fdf1a",
     "SMDPAgent._end_held_run": "d869d34667c3067f",
     "SMDPAgent._grow": "df200e3fc423ac39",
-    "PartitionTree.leaf_of": "ee41c6188076754e",
+    "PartitionTree.leaf_of": "6a1300d763454473",  # a Sequence annotation (stored copies)
     "PartitionTree.record": "c6ca80ffc6949cf0",
     "PartitionTree._try_split": "47296a89935ec01a",
     "PartitionTree.may_split": "6e07498ec05bb032",
     "PartitionTree.split_box": "bef2291ad37355c8",  # part 15: integer inputs (refused here)
     "PartitionTree.split_with_samples": "a42416998727ec06",
     "PartitionTree.split": "d41c976a347495ae",
-    "UniformGrid.leaf_of": "d0472db7cca8f40e",
-    "ErrorBuffer.__init__": "9ea1b2a8897928d2",
-    "ErrorBuffer.add": "60eb94099d6ba852",
+    "UniformGrid.leaf_of": "5480bacdb78c6fc5",  # a Sequence annotation
+    "ErrorBuffer.__init__": "5055312c1e4acf17",  # storage grown on demand (allocate())
+    "ErrorBuffer.add": "6edcfbf061842124",
     "ErrorBuffer._exact_sums": "449e23fee4655dca",
     "ErrorBuffer.mean_variance": "ccbf03f39d469108",
     "ErrorBuffer.clear": "971d49be875d6831",
-    "ErrorBuffer.arrays": "98183933f81869fd",
+    "ErrorBuffer.arrays": "0df57f67b4d317d9",
     "should_split": "f92a49ed5e2bc1b4",
     "t_statistics": "4f6215544c013169",
     "density_crossing": "262ff1e7150804f2",
@@ -1413,6 +1413,7 @@ class FastRunner:
             st[k.I_NFREE] -= 1
             slot = int(self.free[st[k.I_NFREE]])
             li[leaf, k.L_SLOT] = slot
+        buf.allocate()  # the pool's row is the buffer at full size
         self.bufi[slot] = np.frombuffer(buf.inputs, dtype=np.float64)
         self.buff[slot] = np.frombuffer(buf.errors, dtype=np.float64)
         self.bctr[slot] = (buf.count, buf.head, buf.capacity, 0)  # nothing to copy back
@@ -1594,6 +1595,7 @@ class FastRunner:
                     continue
                 buf = buffers[i]
                 if high > low:  # the stretch of storage the kernel wrote since the last copy
+                    buf.allocate()
                     inputs = np.frombuffer(buf.inputs, dtype=np.float64)
                     inputs[2 * low : 2 * high] = bufi[slot, 2 * low : 2 * high]
                     np.frombuffer(buf.errors, dtype=np.float64)[low:high] = buff[slot, low:high]

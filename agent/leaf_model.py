@@ -21,16 +21,24 @@ end at a *novel end*, valued ``q_init`` after it, until the agent points it at i
 (:mod:`agent.novelty`).
 
 Keys are ``leaf * n_actions + action``. The state is plain data (:meth:`state`).
+
+Stored inputs are compact copies (:data:`Stored`, ``array('d')``: 8 bytes a value, against about
+32 for a list of Python floats), and an epoch's end state and the next epoch's first input share
+one copy, so a wide input (38 for the lidar) costs a quarter of the memory a list would. A stored
+epoch is found by the identity of its copy, the handle :meth:`LeafModel.add` returns.
 """
 
 from __future__ import annotations
 
 import heapq
+from array import array
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
-Record = tuple[list[float], float, float, list[float] | None, int, bool]
+Stored = array
+"""A stored input: a compact ``array('d')`` copy of the input list the learner passed."""
+Record = tuple[Stored, float, float, Stored | None, int, bool]
 """(first input, mean reward part R, mean discount D, end state or None if terminal, end leaf,
 whether the epoch ended on a collision: ``TreeConfig.collision_splits`` marks it)."""
 _TERMINAL = -1
@@ -62,6 +70,11 @@ class LeafModel:
         """V-bar after a novel end (the agent sets its ``q_init``; :mod:`agent.novelty`)."""
         self.seen: dict[tuple[int, ...], int] = {}
         """Inputs counted per novelty-grid cell (``TreeConfig.novelty_cells``)."""
+        self.last_added: Stored = array("d")
+        """The handle of the epoch :meth:`add` stored last (its first input's copy)."""
+        self._last_end: tuple[Sequence[float] | None, Stored | None] = (None, None)
+        """The input list the last stored epoch ended at and its copy: the next epoch begins
+        there, and shares the copy."""
 
     def count(self, leaf: int, action: int) -> int:
         """Epochs in the window of (leaf, action)."""
@@ -72,21 +85,30 @@ class LeafModel:
         self,
         leaf: int,
         action: int,
-        first: list[float],
+        first: Sequence[float],
         reward: float,
         discount: float,
-        end: list[float] | None,
+        end: Sequence[float] | None,
         end_leaf: int,
         novel: bool = False,
-    ) -> None:
+    ) -> Stored:
         """Store one epoch; ``end=None`` (and any ``end_leaf``) marks a terminal state, and
-        ``novel`` a novel end (V-bar after it is :attr:`novel_value`; :mod:`agent.novelty`)."""
+        ``novel`` a novel end (V-bar after it is :attr:`novel_value`; :mod:`agent.novelty`).
+
+        The inputs are stored as compact copies (:data:`Stored`); ``first`` shares the copy of
+        the last epoch's ``end`` when it is that very list. Returns the stored copy of
+        ``first``: the handle :meth:`locate`, :meth:`mark_collided`, :meth:`blend` and
+        :meth:`restore` find the epoch by."""
         key = leaf * self.n_actions + action
         records = self._records.get(key)
         if records is None:
             records = self._records[key] = deque()
+        source, copy = self._last_end
+        stored = copy if first is source and copy is not None else array("d", first)
+        stored_end = None if end is None else array("d", end)
+        self._last_end = (end, stored_end)
         target = _TERMINAL if end is None else _NOVEL if novel else end_leaf
-        records.append((first, reward, discount, end, target, False))
+        records.append((stored, reward, discount, stored_end, target, False))
         self._link(target, key, 1)
         if len(records) > self.window:
             old = records.popleft()
@@ -95,6 +117,8 @@ class LeafModel:
         if end is None:
             self.terminals += 1
         self._aggregate(key)
+        self.last_added = stored
+        return stored
 
     def value(self, leaf: int, action: int, q: list[list[float]]) -> float | None:
         """The model's Q-bar(leaf, action) under the values ``q`` (None without epochs)."""
@@ -109,7 +133,7 @@ class LeafModel:
 
     def targets(
         self, leaf: int, action: int, q: list[list[float]]
-    ) -> tuple[list[list[float]], list[float]]:
+    ) -> tuple[list[Stored], list[float]]:
         """The first input and the eq. (8) target ``R + D V-bar(l')`` under the values ``q`` of
         every stored epoch of (leaf, action), oldest first (``TreeConfig.model_split_epochs``)."""
         records = self._records.get(leaf * self.n_actions + action)
@@ -125,7 +149,7 @@ class LeafModel:
         ]
         return firsts, values
 
-    def collisions(self, leaf: int, action: int) -> tuple[list[list[float]], list[bool]]:
+    def collisions(self, leaf: int, action: int) -> tuple[list[Stored], list[bool]]:
         """The first input of every stored epoch of (leaf, action), oldest first, and whether
         it ended on a collision (``TreeConfig.collision_splits``)."""
         records = self._records.get(leaf * self.n_actions + action)
@@ -133,9 +157,9 @@ class LeafModel:
             return [], []
         return [record[0] for record in records], [record[5] for record in records]
 
-    def mark_collided(self, leaf: int, action: int, first: list[float]) -> bool:
-        """Mark the stored epoch of (leaf, action) that began at ``first`` (the very list it
-        was stored with) as ended on a collision; False when it is not stored there."""
+    def mark_collided(self, leaf: int, action: int, first: Stored) -> bool:
+        """Mark the stored epoch of (leaf, action) that began at ``first`` (its handle, from
+        :meth:`add`) as ended on a collision; False when it is not stored there."""
         i = self.locate(leaf, action, first)
         if i is None:
             return False
@@ -143,9 +167,9 @@ class LeafModel:
         records[i] = (*records[i][:5], True)
         return True
 
-    def locate(self, leaf: int, action: int, first: list[float]) -> int | None:
+    def locate(self, leaf: int, action: int, first: Stored) -> int | None:
         """The place in the window of (leaf, action) of the stored epoch that began at
-        ``first`` (the very list it was stored with; an equal list is another epoch), or None
+        ``first`` (its handle, from :meth:`add`; an equal input is another epoch), or None
         when it is not stored there."""
         records = self._records.get(leaf * self.n_actions + action)
         if records:
@@ -154,19 +178,19 @@ class LeafModel:
                     return i
         return None
 
-    def first_input(self, key: int, index: int) -> list[float]:
+    def first_input(self, key: int, index: int) -> Stored:
         """The first input of the stored epoch at ``index`` in the window of ``key`` (the
-        list :meth:`locate` finds it by); a KeyError or IndexError where there is none."""
+        handle :meth:`locate` finds it by); a KeyError or IndexError where there is none."""
         records = self._records[key]
         if not 0 <= index < len(records):
             raise IndexError(f"key {key} holds {len(records)} epochs, not one at {index}")
         return records[index][0]
 
     def blend(
-        self, leaf: int, action: int, first: list[float], lam: float, after: float
+        self, leaf: int, action: int, first: Stored, lam: float, after: float
     ) -> tuple[float, float] | None:
         """``TreeConfig.model_lambda``: the stored epoch of (leaf, action) that began at
-        ``first`` (the very list it was stored with) keeps ``1 - lam`` of its bootstrap and
+        ``first`` (its handle, from :meth:`add`) keeps ``1 - lam`` of its bootstrap and
         takes ``lam`` of the return ``after`` it instead: R + lam D after, (1 - lam) D.
         Returns the epoch's R and D before the blend (:meth:`restore` puts them back), or None
         when the epoch is no longer stored (out of the window, dropped by a split) or was
@@ -185,7 +209,7 @@ class LeafModel:
         return reward, discount
 
     def restore(
-        self, leaf: int, action: int, first: list[float], reward: float, discount: float
+        self, leaf: int, action: int, first: Stored, reward: float, discount: float
     ) -> bool:
         """``TreeConfig.model_lambda_episodes``: the stored epoch of (leaf, action) that began
         at ``first`` takes ``reward`` and ``discount`` (its form before :meth:`blend`) back.
@@ -262,7 +286,7 @@ class LeafModel:
         return changes
 
     def split(
-        self, parent: int, children: tuple[int, int], leaf_of: Callable[[list[float]], int]
+        self, parent: int, children: tuple[int, int], leaf_of: Callable[[Sequence[float]], int]
     ) -> list[int]:
         """Re-file the epochs of ``parent`` and those ending in it; returns the keys changed."""
         n_actions = self.n_actions
@@ -301,7 +325,7 @@ class LeafModel:
         self._priority.pop(parent, None)
         return sorted(changed)
 
-    def end_novelty(self, leaf_of: Callable[[list[float]], int]) -> list[int]:
+    def end_novelty(self, leaf_of: Callable[[Sequence[float]], int]) -> list[int]:
         """Point every novel end at the leaf that holds its end state (``novelty_terminals``
         reached); returns the keys changed, in order."""
         changed = [
@@ -314,7 +338,7 @@ class LeafModel:
             self._aggregate(key)
         return changed
 
-    def _repoint(self, key: int, old: int, leaf_of: Callable[[list[float]], int]) -> None:
+    def _repoint(self, key: int, old: int, leaf_of: Callable[[Sequence[float]], int]) -> None:
         """The stored epochs of ``key`` that end at ``old`` (a split leaf, or :data:`_NOVEL`)
         end at the leaf ``leaf_of`` gives their end state, and are linked to it (the caller
         re-aggregates ``key``)."""
@@ -449,10 +473,10 @@ def _record_from_state(entry: Any) -> Record:
         raise ValueError(f"a stored epoch's collision mark must be true, got {entry[5]!r}")
     first, reward, discount, end, end_leaf = entry[:5]
     return (
-        [float(v) for v in first],
+        array("d", [float(v) for v in first]),
         float(reward),
         float(discount),
-        None if end is None else [float(v) for v in end],
+        None if end is None else array("d", [float(v) for v in end]),
         int(end_leaf),
         len(entry) == 6,
     )

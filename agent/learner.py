@@ -392,7 +392,7 @@ class SMDPAgent:
         self,
         leaf: int,
         action: int,
-        firsts: list[list[float]],
+        firsts: Sequence[Sequence[float]],
         targets: list[float],
         box: tuple[FloatArray, FloatArray, FloatArray],
     ) -> tuple[int, float] | None:

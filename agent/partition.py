@@ -9,6 +9,7 @@ fixed uniform grid baseline.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any, Protocol
 
 import numpy as np
@@ -29,8 +30,8 @@ class Partition(Protocol):
         """Leaf ids are below this; the learner's tables have this many rows."""
         ...
 
-    def leaf_of(self, x: list[float]) -> int:
-        """Leaf id of the input vector ``x`` (a list of floats, for speed)."""
+    def leaf_of(self, x: Sequence[float]) -> int:
+        """Leaf id of the input vector ``x`` (a list of floats, for speed, or a stored copy)."""
         ...
 
     def leaves(self) -> list[int]:

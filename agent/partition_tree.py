@@ -22,7 +22,7 @@ cells ``[k - 0.5, k + 0.5]``: no child is narrower than one cell, and with
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -175,7 +175,7 @@ class PartitionTree:
         """Largest leaf depth (0 for the root alone)."""
         return max(self._depth[leaf] for leaf in self.leaves())
 
-    def leaf_of(self, x: list[float]) -> int:
+    def leaf_of(self, x: Sequence[float]) -> int:
         dims, thresholds, left = self._dim, self._threshold, self._left
         node = 0
         d = dims[0]

@@ -60,8 +60,9 @@ class TreeAgent(SMDPAgent):
         if terminated:
             self._after_terminal_epoch()
         if end_x is not None and end_x is self.collision_end and self.model is not None:
-            held = self.partition.leaf_of(xs[0])  # the epoch's leaf, or the child holding it
-            self.model.mark_collided(held, action, xs[0])
+            first = self.model.last_added  # the epoch just stored
+            held = self.partition.leaf_of(first)  # the epoch's leaf, or the child holding it
+            self.model.mark_collided(held, action, first)
             if not split:
                 split = self._collision_split(leaf, action)
         return split

@@ -39,6 +39,7 @@ from agent.config import TreeConfig
 from agent.episode_stats import EpisodeStats
 from agent.exploration import Exploration, Greedy
 from agent.exploration.base import greedy_action
+from agent.leaf_model import Stored
 from agent.learner import Bounds
 from agent.partition_tree import PartitionTree
 from agent.smdp import epoch_returns
@@ -138,14 +139,14 @@ class TreeEnsembleAgent(TreeAgent):
         self.crossing_steps = 0
         self.crossings = 0
         """Steps and count of the leaf crossings so far (``TreeConfig.hold_crossings``)."""
-        self._trace: list[tuple[list[float], int, float, int, bool, list[float], bool]] | None
+        self._trace: list[tuple[Stored, int, float, int, bool, list[float], bool]] | None
         self._trace = [] if self.config.model_lambda > 0.0 and self.model is not None else None
         """This episode's model epochs in order (``TreeConfig.model_lambda``): first input,
         action, discounted reward from the first input, length, terminal, end input, and
         whether its action was exploratory."""
         self._explored = False
         """Whether the action of the epoch under way was exploratory (``model_lambda``)."""
-        self._blended: deque[list[tuple[list[float], int, float, float]]] = deque()
+        self._blended: deque[list[tuple[Stored, int, float, float]]] = deque()
         """``TreeConfig.model_lambda_episodes``: per recent episode, oldest first, each epoch it
         blended: first input, action, and the R and D it had before the blend."""
         self.terminal_reward_sum = 0.0
@@ -244,10 +245,14 @@ class TreeEnsembleAgent(TreeAgent):
     ) -> bool:
         """:meth:`SMDPAgent._end_epoch`, and with ``TreeConfig.model_lambda`` the epoch kept
         for the episode's lambda-returns (:meth:`_blend_episode`)."""
-        if self._trace is not None and end_x is not None:
-            start = epoch_returns(rs, 0.0, self.discount)[0]
-            self._trace.append((xs[0], action, start, len(rs), terminated, end_x, self._explored))
-        return super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
+        if self._trace is None or end_x is None:
+            return super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
+        start = epoch_returns(rs, 0.0, self.discount)[0]  # the discount before this epoch
+        split = super()._end_epoch(leaf, action, xs, rs, bootstrap, end_x, terminated)
+        assert self.model is not None  # a trace is kept only with the model
+        first = self.model.last_added  # the handle of the epoch just stored
+        self._trace.append((first, action, start, len(rs), terminated, end_x, self._explored))
+        return split
 
     def _blend_episode(self, terminated: bool) -> None:
         """``TreeConfig.model_lambda`` at the end of an episode: going back from its last
@@ -283,7 +288,7 @@ class TreeEnsembleAgent(TreeAgent):
         q = self.q
         leaf_of = self.partition.leaf_of
         touched: dict[tuple[int, int], None] = {}
-        blended: list[tuple[list[float], int, float, float]] = []
+        blended: list[tuple[Stored, int, float, float]] = []
         after = 0.0
         if trace:
             after = 0.0 if terminated else max(q[leaf_of(trace[-1][5])])
@@ -356,12 +361,12 @@ class TreeEnsembleAgent(TreeAgent):
             raise ValueError("blended epochs without TreeConfig.model_lambda_episodes")
         if not isinstance(episodes, list) or len(episodes) > kept:
             raise ValueError(f"blended: expected a list of at most {kept} episodes")
-        restored: deque[list[tuple[list[float], int, float, float]]] = deque()
+        restored: deque[list[tuple[Stored, int, float, float]]] = deque()
         seen: set[tuple[int, int]] = set()
         for e, rows in enumerate(episodes):
             if not isinstance(rows, list):
                 raise ValueError(f"blended episode {e}: expected a list, got {rows!r}")
-            blends: list[tuple[list[float], int, float, float]] = []
+            blends: list[tuple[Stored, int, float, float]] = []
             for row in rows:
                 ok = isinstance(row, list) and len(row) == 4
                 ok = ok and all(isinstance(v, int) and not isinstance(v, bool) for v in row[:2])

@@ -58,7 +58,7 @@ class UniformGrid:
         self.n_ids = self.n_leaves
         self.depth = 0
 
-    def leaf_of(self, x: list[float]) -> int:
+    def leaf_of(self, x: Sequence[float]) -> int:
         leaf = 0
         for i, lo, scale, n, stride in self._terms:
             c = int((x[i] - lo) * scale)

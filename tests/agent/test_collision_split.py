@@ -168,7 +168,9 @@ def test_model_files_without_marks_load_and_bad_marks_are_refused() -> None:
         "priority": [],
     }
     model = LeafModel.from_state(2, old)
-    assert model.collisions(0, 0) == ([[0.2]], [False])
+    firsts, collided = model.collisions(0, 0)
+    assert [list(first) for first in firsts] == [[0.2]]
+    assert collided == [False]
     assert model.state()["records"] == old["records"]  # written back as it was read
     for bad in (False, 1, "true", None):
         broken = dict(old, records=[[0, [[[0.2], -1.0, 0.9, [0.3], 0, bad]]]])

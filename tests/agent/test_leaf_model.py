@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from array import array
 
 import numpy as np
 import pytest
@@ -100,3 +101,24 @@ def test_planning_agent_learns_the_mean_target_at_once() -> None:
     assert agent.q[0][acted] == pytest.approx((1.75 + 1.5 + 1.0) / 3)
     assert agent.model is not None
     assert agent.model.count(0, acted) == 1
+
+
+def test_stored_inputs_are_compact_copies_shared_between_an_end_and_the_next_start() -> None:
+    model = LeafModel(n_actions=2, window=4)
+    start, middle, end = [0.1, 0.2], [0.3, 0.4], [0.5, 0.6]
+    first = model.add(0, 0, start, -1.0, 0.9, middle, 1)
+    assert isinstance(first, array)
+    assert list(first) == start
+    assert first is model.last_added
+    second = model.add(1, 1, middle, -1.0, 0.9, end, 0)  # begins where the first ended
+    record_first, record_second = model._records[0][0], model._records[3][0]
+    assert record_first[0] is first
+    assert record_first[3] is second  # one copy for the end and the next start
+    assert record_second[3] is not None
+    assert list(record_second[3]) == end
+    middle[0] = 9.0  # the caller's lists are copied, not kept
+    assert list(second) == [0.3, 0.4]
+    third = model.add(0, 0, [0.5, 0.6], -1.0, 0.9, None, -1)  # an equal list, not the same one
+    assert third is not record_second[3]
+    assert model.locate(0, 0, third) == 1
+    assert model.locate(0, 0, array("d", [0.5, 0.6])) is None

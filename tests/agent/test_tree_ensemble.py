@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+from array import array
 from typing import Any
 
 import gymnasium as gym
@@ -644,17 +645,16 @@ def test_decisions_on_failure_are_checked() -> None:
 
 def test_a_blended_model_epoch_takes_lambda_of_the_return_after_it() -> None:
     model = LeafModel(n_actions=2, window=4)
-    first = [0.1]
-    model.add(0, 1, first, -2.0, 0.5, [0.6], 3)
-    model.add(0, 1, [0.2], -1.0, 0.25, None, -1)  # terminal: nothing to blend
+    first = model.add(0, 1, [0.1], -2.0, 0.5, [0.6], 3)  # the stored epoch's handle
+    terminal = model.add(0, 1, [0.2], -1.0, 0.25, None, -1)  # terminal: nothing to blend
     q = [[0.0, 0.0] for _ in range(4)]
     q[3] = [-8.0, -6.0]
     assert model.value(0, 1, q) == ((-2.0 + 0.5 * -6.0) + -1.0) / 2
     assert model.blend(0, 1, first, 0.25, -10.0)
     # R + lam D after = -2 - 1.25, D (1 - lam) = 0.375
     assert model.value(0, 1, q) == ((-3.25 + 0.375 * -6.0) + -1.0) / 2
-    assert not model.blend(0, 1, [0.2], 0.25, -10.0)  # the terminal epoch
-    assert not model.blend(0, 1, [0.1], 0.25, -10.0)  # an equal list is not the stored one
+    assert not model.blend(0, 1, terminal, 0.25, -10.0)  # the terminal epoch
+    assert not model.blend(0, 1, array("d", [0.1]), 0.25, -10.0)  # equal, not the stored one
     assert not model.blend(1, 1, first, 0.25, -10.0)  # nothing stored there
 
 
@@ -839,12 +839,13 @@ def test_step_counts_are_positive_ints_or_none(name: str, value: object) -> None
 
 def test_a_restored_model_epoch_takes_its_one_step_form_back() -> None:
     model = LeafModel(n_actions=2, window=4)
-    first = [0.1]
-    model.add(0, 1, first, -2.0, 0.5, [0.6], 3)
+    first = model.add(0, 1, [0.1], -2.0, 0.5, [0.6], 3)
+    assert first is model.last_added
+    assert list(first) == [0.1]
     q = [[0.0, 0.0] for _ in range(4)]
     q[3] = [-8.0, -6.0]
     assert model.locate(0, 1, first) == 0
-    assert model.locate(0, 1, [0.1]) is None  # an equal list is another epoch
+    assert model.locate(0, 1, array("d", [0.1])) is None  # an equal input is another epoch
     assert model.first_input(1, 0) is first
     assert model.blend(0, 1, first, 0.25, -10.0) == (-2.0, 0.5)
     assert model.value(0, 1, q) == -3.25 + 0.375 * -6.0
