@@ -228,7 +228,18 @@ class LeafModel:
         """Ask for the predecessors of ``leaf`` to be backed up (largest priority first)."""
         if priority > self._priority.get(leaf, 0.0):
             self._priority[leaf] = priority
-            heapq.heappush(self._queue, (-priority, leaf))
+            queue = self._queue
+            heapq.heappush(queue, (-priority, leaf))
+            if len(queue) > 2 * len(self._priority) + 1024:
+                self._drop_stale()
+
+    def _drop_stale(self) -> None:
+        """Rebuild the queue from the live priorities. A stale entry (its leaf queued again
+        with a larger priority, or already backed up) is skipped when popped and costs no
+        backup, and the live entries pop in the order of their (priority, leaf) values
+        whatever the heap's layout, so the sweeps back up the same leaves in the same order."""
+        self._queue = [(-priority, leaf) for leaf, priority in self._priority.items()]
+        heapq.heapify(self._queue)
 
     def sweep(
         self,

@@ -122,3 +122,34 @@ def test_stored_inputs_are_compact_copies_shared_between_an_end_and_the_next_sta
     assert third is not record_second[3]
     assert model.locate(0, 0, third) == 1
     assert model.locate(0, 0, array("d", [0.5, 0.6])) is None
+
+
+class _KeepsStale(LeafModel):
+    """The model with its queue never rebuilt: every stale entry stays in the heap."""
+
+    def _drop_stale(self) -> None:
+        pass
+
+
+def test_dropping_stale_queue_entries_keeps_the_sweeps_and_bounds_the_queue() -> None:
+    rng = np.random.default_rng(7)
+    models = (LeafModel(n_actions=2, window=4), _KeepsStale(n_actions=2, window=4))
+    leaves = 60
+    for model in models:  # a random chain of epochs between 60 leaves, the same in both
+        draw = np.random.default_rng(1)
+        for _ in range(400):
+            leaf, end = draw.integers(leaves, size=2).tolist()
+            model.add(leaf, int(draw.integers(2)), [0.0], float(draw.normal()), 0.9, [0.0], end)
+    tables = [[[0.0, 0.0] for _ in range(leaves)] for _ in models]
+    backups: list[list[int]] = [[], []]
+    for t in range(300):  # rising priorities, few backups: stale entries pile up
+        pushes = [(int(rng.integers(leaves)), t + float(rng.random())) for _ in range(40)]
+        for model, q, done in zip(models, tables, backups, strict=True):
+            for leaf, priority in pushes:
+                model.push(leaf, priority)
+            done.append(model.sweep(q, budget=3, tolerance=0.05))
+    assert sum(backups[0]) > 500
+    assert backups[0] == backups[1]
+    assert tables[0] == tables[1]  # the same backups, in the same order
+    assert len(models[0]._queue) <= 2 * len(models[0]._priority) + 1024
+    assert len(models[1]._queue) > 5_000  # the reference kept its stale entries
