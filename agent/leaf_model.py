@@ -56,8 +56,11 @@ class LeafModel:
         self.n_actions = n_actions
         self.window = window
         self._records: dict[int, deque[Record]] = {}
-        self._reward: dict[int, float] = {}
-        self._discount: dict[int, dict[int, float]] = {}
+        self._sums: dict[int, tuple[float, tuple[tuple[int, float], ...], int]] = {}
+        """Per key with stored epochs: the sum of their R (with D q_init for each novel end),
+        each end leaf with the sum of the D of the epochs that end there (in the order the
+        leaves first appear in the window), and how many epochs are stored. One lookup gives
+        :meth:`value` all it needs."""
         self._preds: dict[int, dict[int, int]] = {}
         """end leaf -> key -> how many of the key's stored epochs end in that leaf."""
         self.epochs: dict[int, int] = {}
@@ -122,14 +125,13 @@ class LeafModel:
 
     def value(self, leaf: int, action: int, q: list[list[float]]) -> float | None:
         """The model's Q-bar(leaf, action) under the values ``q`` (None without epochs)."""
-        key = leaf * self.n_actions + action
-        records = self._records.get(key)
-        if not records:
+        entry = self._sums.get(leaf * self.n_actions + action)
+        if entry is None:
             return None
-        total = self._reward[key]
-        for end_leaf, discount in self._discount[key].items():
+        total, ends, count = entry
+        for end_leaf, discount in ends:
             total += discount * max(q[end_leaf])
-        return total / len(records)
+        return total / count
 
     def targets(
         self, leaf: int, action: int, q: list[list[float]]
@@ -256,18 +258,23 @@ class LeafModel:
         """
         done = 0
         n_actions = self.n_actions
+        sums = self._sums
         while self._queue and done < budget:
             negative, leaf = heapq.heappop(self._queue)
             if self._priority.get(leaf) != -negative:
                 continue  # a stale entry: the leaf was queued again with a larger priority
             del self._priority[leaf]
             for key in list(self._preds.get(leaf, ())):
+                entry = sums.get(key)
+                if entry is None:
+                    continue
+                value, ends, count = entry  # :meth:`value`, inlined: the sweeps' hot loop
+                for end_leaf, discount in ends:
+                    value += discount * max(q[end_leaf])
+                value /= count
                 pred, action = divmod(key, n_actions)
                 row = q[pred]
                 before = max(row)
-                value = self.value(pred, action, q)
-                if value is None:
-                    continue
                 if bonus is not None:
                     value += bonus(pred, action)
                 row[action] = value
@@ -306,8 +313,7 @@ class LeafModel:
             key = parent * n_actions + action
             records = self._records.pop(key, None)
             epochs = self.epochs.pop(key, 0)
-            self._reward.pop(key, None)
-            self._discount.pop(key, None)
+            self._sums.pop(key, None)
             if records is None:
                 continue
             moved = {child: 0 for child in children}
@@ -385,8 +391,10 @@ class LeafModel:
                 reward += d * self.novel_value
             elif end is not None:
                 discount[end_leaf] = discount.get(end_leaf, 0.0) + d
-        self._reward[key] = reward
-        self._discount[key] = discount
+        if self._records[key]:
+            self._sums[key] = (reward, tuple(discount.items()), len(self._records[key]))
+        else:
+            self._sums.pop(key, None)
 
     def state(self) -> dict[str, Any]:
         """JSON-ready state: every stored epoch, the epoch counts, the predecessor links and the
