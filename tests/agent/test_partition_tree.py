@@ -86,3 +86,24 @@ def test_guards_bound_the_tree() -> None:
     )
     assert narrow.record(0, xs, errors) == (1, 2)  # exactly two halves still fit
     assert narrow._threshold[0] == 0.5
+
+
+def test_every_partition_finds_the_same_leaf_for_a_stored_copy() -> None:
+    """The model stores inputs as ``array('d')`` copies (agent.leaf_model) and re-files them
+    through ``leaf_of`` after a split, so a copy must land where its list does."""
+    from array import array
+
+    from agent.adaptive_q import BoxTree
+    from agent.uniform_grid import UniformGrid
+
+    t = tree()
+    t.split(0, 0, 0.5)
+    t.split(2, 1, 0.25)
+    boxes = BoxTree([0.0, 0.0], [1.0, 1.0], 0.0, 3)
+    boxes.split(0)
+    boxes.split(1)
+    partitions = [t, UniformGrid([0.0, 0.0], [1.0, 1.0], 7), boxes]
+    rng = np.random.default_rng(5)
+    for x in rng.uniform(-0.2, 1.2, size=(200, 2)).tolist():
+        for partition in partitions:
+            assert partition.leaf_of(array("d", x)) == partition.leaf_of(x)
