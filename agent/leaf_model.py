@@ -99,7 +99,8 @@ class LeafModel:
         ``novel`` a novel end (V-bar after it is :attr:`novel_value`; :mod:`agent.novelty`).
 
         The inputs are stored as compact copies (:data:`Stored`); ``first`` shares the copy of
-        the last epoch's ``end`` when it is that very list. Returns the stored copy of
+        the last epoch's ``end`` when it is that very list, still holding the same values.
+        Returns the stored copy of
         ``first``: the handle :meth:`locate`, :meth:`mark_collided`, :meth:`blend` and
         :meth:`restore` find the epoch by."""
         key = leaf * self.n_actions + action
@@ -107,7 +108,9 @@ class LeafModel:
         if records is None:
             records = self._records[key] = deque()
         source, copy = self._last_end
-        stored = copy if first is source and copy is not None else array("d", first)
+        stored = array("d", first)
+        if first is source and copy == stored:  # (unless the caller changed the list since)
+            stored = copy
         stored_end = None if end is None else array("d", end)
         self._last_end = (end, stored_end)
         target = _TERMINAL if end is None else _NOVEL if novel else end_leaf

@@ -122,6 +122,12 @@ def test_stored_inputs_are_compact_copies_shared_between_an_end_and_the_next_sta
     assert third is not record_second[3]
     assert model.locate(0, 0, third) == 1
     assert model.locate(0, 0, array("d", [0.5, 0.6])) is None
+    reused = [1.0, 2.0]
+    model.add(2, 0, [0.0, 0.0], -1.0, 0.9, reused, 0)
+    reused[0] = 7.0  # the caller changes the list it passed as the end, then starts there
+    fourth = model.add(0, 1, reused, -1.0, 0.9, None, -1)
+    assert list(fourth) == [7.0, 2.0]  # a fresh copy, not the stale shared one
+    assert list(model._records[4][0][3]) == [1.0, 2.0]
 
 
 class _KeepsStale(LeafModel):
