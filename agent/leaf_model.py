@@ -424,16 +424,36 @@ class LeafModel:
 
     @classmethod
     def from_state(
-        cls, n_actions: int, state: dict[str, Any], novel_value: float = 0.0
+        cls,
+        n_actions: int,
+        state: dict[str, Any],
+        novel_value: float = 0.0,
+        *,
+        dims: int | None = None,
+        leaves: set[int] | None = None,
     ) -> LeafModel:
-        """Inverse of :meth:`state`; ``novel_value`` is V-bar after a novel end."""
+        """Inverse of :meth:`state`; ``novel_value`` is V-bar after a novel end. With ``dims``
+        every stored input must have that many values, and with ``leaves`` every key's leaf
+        and every end leaf must be one of them (a ValueError names the first that is not)."""
         model = cls(n_actions, int(state["window"]))
         model.novel_value = novel_value
         for key, records in state["records"]:
-            bucket = model._records[int(key)] = deque()
-            for entry in records:
-                bucket.append(_record_from_state(entry))
-            model._aggregate(int(key))
+            if isinstance(key, bool) or not isinstance(key, int) or key < 0:
+                raise ValueError(f"the model's key {key!r} is not an int >= 0")
+            if leaves is not None and key // n_actions not in leaves:
+                raise ValueError(f"the model's key {key} is not a leaf's (leaf {key // n_actions})")
+            bucket = model._records[key] = deque()
+            for i, entry in enumerate(records):
+                try:
+                    record = _record_from_state(entry, dims)
+                    if leaves is not None and record[4] >= 0 and record[4] not in leaves:
+                        raise ValueError(f"its end leaf {record[4]} is not a leaf")
+                except ValueError as error:
+                    raise ValueError(
+                        f"the model's stored epoch {i} of key {key}: {error}"
+                    ) from None
+                bucket.append(record)
+            model._aggregate(key)
         model.epochs = {int(k): int(n) for k, n in state["epochs"]}
         model._preds = {
             int(leaf): {int(k): int(n) for k, n in links} for leaf, links in state["preds"]
@@ -487,18 +507,37 @@ def _record_state(record: Record) -> list[Any]:
     return [*entry, True] if collided else entry
 
 
-def _record_from_state(entry: Any) -> Record:
-    """Inverse of :func:`_record_state`; a sixth entry must be ``True``."""
+def _record_from_state(entry: Any, dims: int | None = None) -> Record:
+    """Inverse of :func:`_record_state`; a sixth entry must be ``True``. With ``dims`` the
+    inputs must have that many values. A ValueError says what is wrong."""
     if not isinstance(entry, list | tuple) or len(entry) not in (5, 6):
         raise ValueError(f"a stored epoch of the model must have 5 or 6 entries, got {entry!r}")
     if len(entry) == 6 and entry[5] is not True:
         raise ValueError(f"a stored epoch's collision mark must be true, got {entry[5]!r}")
     first, reward, discount, end, end_leaf = entry[:5]
+    for name, value in (("R", reward), ("D", discount)):
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise ValueError(f"its {name} {value!r} is not a number")
+    if isinstance(end_leaf, bool) or not isinstance(end_leaf, int) or end_leaf < _NOVEL:
+        raise ValueError(f"its end leaf {end_leaf!r} is not an int >= {_NOVEL}")
+    if (end is None) != (end_leaf == _TERMINAL):
+        raise ValueError(f"its end state {end!r} and end leaf {end_leaf} disagree on terminal")
     return (
-        array("d", [float(v) for v in first]),
+        _input_from_state("first input", first, dims),
         float(reward),
         float(discount),
-        None if end is None else array("d", [float(v) for v in end]),
-        int(end_leaf),
+        None if end is None else _input_from_state("end state", end, dims),
+        end_leaf,
         len(entry) == 6,
     )
+
+
+def _input_from_state(name: str, values: Any, dims: int | None) -> Stored:
+    """A stored input from its saved list, checked (a list of numbers, ``dims`` of them)."""
+    ok = isinstance(values, list) and all(
+        isinstance(v, int | float) and not isinstance(v, bool) for v in values
+    )
+    if not ok or (dims is not None and len(values) != dims):
+        wanted = "numbers" if dims is None else f"{dims} numbers"
+        raise ValueError(f"its {name} must be a list of {wanted}, got {values!r}")
+    return array("d", values)

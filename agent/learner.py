@@ -773,7 +773,13 @@ class SMDPAgent:
             if "scale" in learner:
                 agent.scale.restore(learner["scale"])
             if "model" in learner and agent.model is not None:
-                agent.model = LeafModel.from_state(agent.n_actions, learner["model"], agent.q_init)
+                agent.model = LeafModel.from_state(
+                    agent.n_actions,
+                    learner["model"],
+                    agent.q_init,
+                    dims=len(agent.bounds[0]),
+                    leaves=set(agent.partition.leaves()),
+                )
             if "optimism" in learner:
                 if not agent.config.optimistic_untried:
                     raise ValueError("an optimism state, but optimistic_untried is off")

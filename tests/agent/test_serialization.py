@@ -455,3 +455,49 @@ def test_infinite_bounds_where_the_space_is_bounded_are_refused(tmp_path: Path) 
     np.savez(tmp_path / "bad.npz", **arrays)
     with pytest.raises(ValueError, match=r"bad\.npz: metadata bounds are infinite where"):
         TreeAgent.load(tmp_path / "bad.npz")
+
+
+def _with_model_record(path: Path, out: Path, change: Callable[[list], None]) -> Path:
+    """A copy of the agent file at ``path`` whose first stored model epoch ``change`` edits."""
+    arrays = dict(np.load(path, allow_pickle=False))
+    metadata = json.loads(bytes(arrays["metadata"]).decode())
+    change(metadata["learner"]["model"]["records"])
+    arrays["metadata"] = np.frombuffer(json.dumps(metadata).encode(), dtype=np.uint8)
+    np.savez(out, **arrays)
+    return out
+
+
+@pytest.mark.parametrize(
+    ("change", "named"),
+    [
+        (lambda r: r[0][1][0].__setitem__(0, [0.1]), "must be a list of 2 numbers"),
+        (lambda r: r[0][1][0].__setitem__(0, [0.1, 0.2, 0.3]), "must be a list of 2 numbers"),
+        (lambda r: r[0][1][0].__setitem__(0, "abc"), "must be a list of 2 numbers"),
+        (lambda r: r[0][1][0].__setitem__(0, None), "must be a list of 2 numbers"),
+        (lambda r: r[0][1][0].__setitem__(0, [True, 0.0]), "must be a list of 2 numbers"),
+        (lambda r: r[0][1][0].__setitem__(1, "x"), "its R 'x' is not a number"),
+        (lambda r: r[0][1][0].__setitem__(2, None), "its D None is not a number"),
+        (lambda r: r[0][1][0].__setitem__(4, 10**6), "end leaf 1000000 is not a leaf"),
+        (lambda r: r[0][1][0].__setitem__(4, -7), "is not an int >= -2"),
+        (lambda r: r[0][1][0].__setitem__(4, 1.5), "is not an int >= -2"),
+        (lambda r: r[0][1][0].__setitem__(3, None), "disagree on terminal"),
+        (lambda r: r[0].__setitem__(0, 3 * 10**6), "is not a leaf's"),
+        (lambda r: r[0].__setitem__(0, "7"), "key '7' is not an int"),
+    ],
+)
+def test_a_damaged_model_epoch_in_an_agent_file_is_refused_by_name(
+    tmp_path: Path, change: Callable[[list], None], named: str
+) -> None:
+    """Fuzz cases: a stored epoch's input of the wrong length used to load and fail later (or
+    never); each damage is now refused at load, naming the file, the key and the field."""
+    from agent import preset
+
+    env = gym.make("MountainCar-v0")
+    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
+    agent.learn(env, 3, reset_seed=0)
+    path = agent.save(tmp_path / "agent.npz")
+    assert TreeAgent.load(path).model is not None  # the undamaged file loads
+    damaged = _with_model_record(path, tmp_path / "damaged.npz", change)
+    with pytest.raises(ValueError, match=r"damaged\.npz") as refused:
+        TreeAgent.load(damaged)
+    assert named in str(refused.value)
