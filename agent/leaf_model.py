@@ -31,6 +31,7 @@ epoch is found by the identity of its copy, the handle :meth:`LeafModel.add` ret
 from __future__ import annotations
 
 import heapq
+import math
 from array import array
 from collections import deque
 from collections.abc import Callable, Sequence
@@ -435,11 +436,12 @@ class LeafModel:
         """Inverse of :meth:`state`; ``novel_value`` is V-bar after a novel end. With ``dims``
         every stored input must have that many values, and with ``leaves`` every key's leaf
         and every end leaf must be one of them (a ValueError names the first that is not)."""
-        model = cls(n_actions, int(state["window"]))
+        model = cls(n_actions, _count(state["window"], 1, "window"))
         model.novel_value = novel_value
-        for key, records in state["records"]:
-            if isinstance(key, bool) or not isinstance(key, int) or key < 0:
-                raise ValueError(f"the model's key {key!r} is not an int >= 0")
+        for key, records in _pairs(state["records"], "records"):
+            _count(key, 0, "key")
+            if not isinstance(records, list):
+                raise ValueError(f"the model's epochs of key {key} are not a list: {records!r}")
             if leaves is not None and key // n_actions not in leaves:
                 raise ValueError(f"the model's key {key} is not a leaf's (leaf {key // n_actions})")
             bucket = model._records[key] = deque()
@@ -454,9 +456,16 @@ class LeafModel:
                     ) from None
                 bucket.append(record)
             model._aggregate(key)
-        model.epochs = {int(k): int(n) for k, n in state["epochs"]}
+        model.epochs = {
+            _count(k, 0, "epoch count's key"): _count(n, 0, f"epoch count of key {k}")
+            for k, n in _pairs(state["epochs"], "epoch counts")
+        }
         model._preds = {
-            int(leaf): {int(k): int(n) for k, n in links} for leaf, links in state["preds"]
+            _count(leaf, 0, "predecessor leaf"): {
+                _count(k, 0, f"predecessor of leaf {leaf}"): _count(n, 1, f"link {leaf} <- {k}")
+                for k, n in _pairs(links, f"predecessors of leaf {leaf}")
+            }
+            for leaf, links in _pairs(state["preds"], "predecessor links")
         }
         expected: dict[int, dict[int, int]] = {}
         for key, bucket in model._records.items():
@@ -468,15 +477,49 @@ class LeafModel:
             leaf: dict(sorted(v.items())) for leaf, v in expected.items()
         }:
             raise ValueError("the model's predecessor links do not match its epochs")
-        model._queue = [(float(p), int(leaf)) for p, leaf in state["heap"]]
+        model._queue = []
+        for p, leaf in _pairs(state["heap"], "sweep queue"):  # entries are (-priority, leaf)
+            number = isinstance(p, int | float) and not isinstance(p, bool)
+            priority = _priority(-p if number else p, f"sweep queue's entry for leaf {leaf!r}")
+            model._queue.append((-priority, _count(leaf, 0, "sweep queue's leaf")))
         heapq.heapify(model._queue)
-        model._priority = {int(leaf): float(p) for leaf, p in state["priority"]}
+        model._priority = {
+            _count(leaf, 0, "queued leaf"): _priority(p, f"queued leaf {leaf}")
+            for leaf, p in _pairs(state["priority"], "queued priorities")
+        }
+        if leaves is not None and not set(model._priority) <= leaves:
+            stray = sorted(set(model._priority) - leaves)[:5]
+            raise ValueError(f"the model queues leaves that are not leaves: {stray}")
         terminals = state.get("terminals", 0)  # absent in files written before the field
         if isinstance(terminals, bool) or not isinstance(terminals, int) or terminals < 0:
             raise ValueError(f"the model's terminal count {terminals!r} is not an int >= 0")
         model.terminals = terminals
         model.seen = _seen_cells(state.get("seen", []))  # absent in files before the field
         return model
+
+
+def _count(value: Any, least: int, what: str) -> int:
+    """``value`` if it is an int >= ``least`` (a ValueError naming ``what`` otherwise)."""
+    if isinstance(value, bool) or not isinstance(value, int) or value < least:
+        raise ValueError(f"the model's {what} is {value!r}, not an int >= {least}")
+    return value
+
+
+def _priority(value: Any, what: str) -> float:
+    """``value`` as a float if it is a finite number > 0 (a sweep priority)."""
+    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    if not ok or value <= 0:
+        raise ValueError(f"the model's {what} has priority {value!r}, not a number > 0")
+    return float(value)
+
+
+def _pairs(entries: Any, what: str) -> list[tuple[Any, Any]]:
+    """The ``[a, b]`` pairs of a saved list (a ValueError naming ``what`` otherwise)."""
+    if not isinstance(entries, list) or not all(
+        isinstance(e, list) and len(e) == 2 for e in entries
+    ):
+        raise ValueError(f"the model's {what} must be a list of pairs, got {entries!r:.120}")
+    return [(a, b) for a, b in entries]
 
 
 def _seen_cells(entries: Any) -> dict[tuple[int, ...], int]:

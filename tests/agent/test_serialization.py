@@ -482,7 +482,7 @@ def _with_model_record(path: Path, out: Path, change: Callable[[list], None]) ->
         (lambda r: r[0][1][0].__setitem__(4, 1.5), "is not an int >= -2"),
         (lambda r: r[0][1][0].__setitem__(3, None), "disagree on terminal"),
         (lambda r: r[0].__setitem__(0, 3 * 10**6), "is not a leaf's"),
-        (lambda r: r[0].__setitem__(0, "7"), "key '7' is not an int"),
+        (lambda r: r[0].__setitem__(0, "7"), "key is '7', not an int"),
     ],
 )
 def test_a_damaged_model_epoch_in_an_agent_file_is_refused_by_name(
@@ -500,4 +500,45 @@ def test_a_damaged_model_epoch_in_an_agent_file_is_refused_by_name(
     damaged = _with_model_record(path, tmp_path / "damaged.npz", change)
     with pytest.raises(ValueError, match=r"damaged\.npz") as refused:
         TreeAgent.load(damaged)
+    assert named in str(refused.value)
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "named"),
+    [
+        ("window", 2.5, "window is 2.5, not an int >= 1"),
+        ("window", True, "window is True, not an int >= 1"),
+        ("window", "x", "window is 'x', not an int >= 1"),
+        ("epochs", [[0, -5]], "epoch count of key 0 is -5"),
+        ("epochs", [["a", 1]], "epoch count's key is 'a'"),
+        ("epochs", 5, "epoch counts must be a list of pairs"),
+        ("heap", [[5.0, 1]], "has priority -5.0, not a number > 0"),
+        ("heap", [["x", 1]], "has priority 'x'"),
+        ("heap", [[-1.0, -1]], "sweep queue's leaf is -1"),
+        ("priority", [[1, -2.0]], "queued leaf 1 has priority -2.0"),
+        ("priority", [[0, 2.0]], "queues leaves that are not leaves: [0]"),
+        ("records", 7, "records must be a list of pairs"),
+        ("records", [[1]], "records must be a list of pairs"),
+        ("preds", [[0, [["a", 1]]]], "predecessor of leaf 0 is 'a'"),
+        ("preds", [[0, [[1, 0]]]], "link 0 <- 1 is 0, not an int >= 1"),
+    ],
+)
+def test_a_damaged_model_field_in_an_agent_file_is_refused_by_name(
+    tmp_path: Path, field: str, value: object, named: str
+) -> None:
+    """Fuzz cases: a fractional window, negative counts and priorities, and a queued node that
+    is not a leaf used to load silently; each is now refused at load, by field."""
+    from agent import preset
+
+    env = gym.make("MountainCar-v0")
+    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
+    agent.learn(env, 3, reset_seed=0)
+    path = agent.save(tmp_path / "agent.npz")
+    arrays = dict(np.load(path, allow_pickle=False))
+    metadata = json.loads(bytes(arrays["metadata"]).decode())
+    metadata["learner"]["model"][field] = value
+    arrays["metadata"] = np.frombuffer(json.dumps(metadata).encode(), dtype=np.uint8)
+    np.savez(tmp_path / "damaged.npz", **arrays)
+    with pytest.raises(ValueError, match=r"damaged\.npz") as refused:
+        TreeAgent.load(tmp_path / "damaged.npz")
     assert named in str(refused.value)
