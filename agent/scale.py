@@ -108,16 +108,52 @@ class RewardScale:
         }
 
     def restore(self, state: dict[str, Any]) -> None:
-        """Inverse of :meth:`state`."""
-        self.gamma = float(state["gamma"])
+        """Inverse of :meth:`state`; a ValueError names the first field that is wrong."""
+        gamma = _number(state["gamma"], "the reward unit's gamma")
+        if not 0.0 <= gamma <= 1.0:
+            raise ValueError(f"the reward unit's gamma {gamma!r} is not in [0, 1]")
+        binned = state["binned"]
+        if not isinstance(binned, bool):
+            raise ValueError(f"the reward unit's binned flag {binned!r} is not a bool")
+        counts, total = _counts(state, "the reward unit", positive_keys=not binned)
+        self.gamma = gamma
         self._horizon = _horizon(self.gamma, self.horizon)  # the horizon is the config's
-        self.total = int(state["total"])
-        self._binned = bool(state["binned"])
-        self._counts = {float(k): int(n) for k, n in state["counts"]}
+        self.total, self._binned, self._counts = total, binned, counts
         self._unit = self._median() * self._horizon if self.total else 0.0
 
     def __repr__(self) -> str:
         return f"RewardScale(rewards={self.total}, value={self.value:.6g})"
+
+
+def _number(value: Any, what: str) -> float:
+    """``value`` as a float if it is a finite number (not a bool)."""
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise ValueError(f"{what} {value!r} is not a finite number")
+    return float(value)
+
+
+def _counts(state: dict[str, Any], what: str, positive_keys: bool) -> tuple[dict[float, int], int]:
+    """A saved ``counts`` list of ``[key, count >= 1]`` pairs (keys > 0 where
+    ``positive_keys``, distinct) and its ``total``, which must be their sum."""
+    entries = state["counts"]
+    if not isinstance(entries, list) or not all(
+        isinstance(e, list) and len(e) == 2 for e in entries
+    ):
+        raise ValueError(f"{what}'s counts must be a list of [value, count] pairs")
+    counts: dict[float, int] = {}
+    for key, n in entries:
+        value = _number(key, f"{what}'s counted value")
+        if positive_keys and value <= 0.0:
+            raise ValueError(f"{what}'s counted magnitude {key!r} is not > 0")
+        if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+            raise ValueError(f"{what}'s count of {key!r} is {n!r}, not an int >= 1")
+        if value in counts:
+            raise ValueError(f"{what} counts {key!r} twice")
+        counts[value] = n
+    total = state["total"]
+    if isinstance(total, bool) or not isinstance(total, int) or total != sum(counts.values()):
+        raise ValueError(f"{what}'s total {total!r} is not the sum of its counts")
+    return counts, total
 
 
 def _horizon(gamma: float, horizon: float | None) -> float:
@@ -171,10 +207,15 @@ class ReturnScale:
         return {"count": self.count, "mean": self.mean, "m2": self.m2}
 
     def restore(self, state: dict[str, Any]) -> None:
-        """Inverse of :meth:`state`."""
-        self.count = int(state["count"])
-        self.mean = float(state["mean"])
-        self.m2 = float(state["m2"])
+        """Inverse of :meth:`state`; a ValueError names the first field that is wrong."""
+        count = state["count"]
+        if isinstance(count, bool) or not isinstance(count, int) or count < 0:
+            raise ValueError(f"the return scale's count {count!r} is not an int >= 0")
+        mean = _number(state["mean"], "the return scale's mean")
+        m2 = _number(state["m2"], "the return scale's m2")
+        if m2 < 0.0:
+            raise ValueError(f"the return scale's m2 {m2!r} is negative")
+        self.count, self.mean, self.m2 = count, mean, m2
 
     def __repr__(self) -> str:
         return f"ReturnScale(returns={self.count}, value={self.value:.6g})"
@@ -241,9 +282,8 @@ class ReturnSpread:
         return {"total": self.total, "counts": [[k, n] for k, n in self._counts.items()]}
 
     def restore(self, state: dict[str, Any]) -> None:
-        """Inverse of :meth:`state`."""
-        self.total = int(state["total"])
-        self._counts = {float(k): int(n) for k, n in state["counts"]}
+        """Inverse of :meth:`state`; a ValueError names the first field that is wrong."""
+        self._counts, self.total = _counts(state, "the return spread", positive_keys=False)
         self._keys = sorted(self._counts)
         self._unit = 0.0
         self._dirty = self.total > 0

@@ -141,7 +141,17 @@ class AdaptiveEpsilon(Exploration):
         }
 
     def load_state_dict(self, state: dict[str, Any]) -> None:
-        self._counts = {
-            k: [int(n) for n in v] for k, v in leaf_table_from_json(state["counts"]).items()
-        }
+        """Inverse of :meth:`state_dict`; a ValueError names a leaf whose counts are not one
+        int >= 0 per action (the probabilities are checked by the agent file's loader)."""
+        counts: dict[int, list[int]] = {}
+        for leaf, row in leaf_table_from_json(state["counts"]).items():
+            ok = isinstance(row, list) and (not self.n_actions or len(row) == self.n_actions)
+            ok = ok and all(isinstance(n, int) and not isinstance(n, bool) and n >= 0 for n in row)
+            if not ok:
+                raise ValueError(
+                    f"adaptive epsilon's counts of leaf {leaf} are {row!r}, not "
+                    f"{self.n_actions} ints >= 0"
+                )
+            counts[leaf] = list(row)
+        self._counts = counts
         self._epsilon = {k: float(v) for k, v in leaf_table_from_json(state["epsilon"]).items()}

@@ -203,11 +203,29 @@ class Tabu(Exploration):
         }
 
     def load_state_dict(self, state: dict[str, Any]) -> None:
-        self.successes = int(state["successes"])
+        """Inverse of :meth:`state_dict`; a ValueError names the first entry that is wrong (a
+        count that is not an int >= 0, a listed action outside the bound action count)."""
+        successes = state["successes"]
+        if isinstance(successes, bool) or not isinstance(successes, int) or successes < 0:
+            raise ValueError(f"tabu successes {successes!r} is not an int >= 0")
+        fifo = state["fifo"]
+        if not isinstance(fifo, list):
+            raise ValueError(f"the tabu list {fifo!r} is not a list")
+        pairs: list[tuple[int, int]] = []
+        n = self.n_actions  # 0 before bind(): no bound to check against
+        for entry in fifo:
+            ok = isinstance(entry, list) and len(entry) == 2
+            ok = ok and all(isinstance(v, int) and not isinstance(v, bool) for v in entry)
+            ok = ok and entry[0] >= 0 and entry[1] >= 0 and (n == 0 or entry[1] < n)
+            if not ok:
+                wanted = "an action >= 0" if n == 0 else f"an action in 0..{n - 1}"
+                raise ValueError(f"tabu list entry {entry!r} is not [leaf >= 0, {wanted}]")
+            pairs.append((entry[0], entry[1]))
+        self.successes = successes
         self._capacity = tabu_capacity(
             self.successes, self.initial_capacity, self.shrink_every, self.min_capacity
         )
-        self._set_entries([(int(leaf), int(action)) for leaf, action in state["fifo"]])
+        self._set_entries(pairs)
         self.base.load_state_dict(state["base"])
 
     def __repr__(self) -> str:

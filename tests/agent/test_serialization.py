@@ -542,3 +542,52 @@ def test_a_damaged_model_field_in_an_agent_file_is_refused_by_name(
     with pytest.raises(ValueError, match=r"damaged\.npz") as refused:
         TreeAgent.load(tmp_path / "damaged.npz")
     assert named in str(refused.value)
+
+
+def _scale(m: dict) -> dict:
+    return m["learner"]["scale"]
+
+
+def _tabu(m: dict) -> dict:
+    return m["exploration"]["state"]
+
+
+@pytest.mark.parametrize(
+    ("edit", "named"),
+    [
+        (lambda m: _scale(m).__setitem__("total", -5), "total -5 is not the sum of its counts"),
+        (lambda m: _scale(m).__setitem__("total", 99), "total 99 is not the sum of its counts"),
+        (lambda m: _scale(m).__setitem__("gamma", 2.0), "gamma 2.0 is not in [0, 1]"),
+        (lambda m: _scale(m).__setitem__("binned", "no"), "binned flag 'no' is not a bool"),
+        (lambda m: _scale(m).__setitem__("counts", [["x", 3]]), "counted value 'x'"),
+        (lambda m: _scale(m).__setitem__("counts", [[1.0, 0]]), "count of 1.0 is 0"),
+        (lambda m: _scale(m).__setitem__("counts", [[-1.0, 3]]), "magnitude -1.0 is not > 0"),
+        (lambda m: _tabu(m).__setitem__("successes", 2.5), "tabu successes 2.5"),
+        (lambda m: _tabu(m).__setitem__("successes", -7), "tabu successes -7"),
+        (lambda m: _tabu(m).__setitem__("fifo", [[1, 9]]), "tabu list entry [1, 9]"),
+        (lambda m: _tabu(m).__setitem__("fifo", [[-3, 1]]), "tabu list entry [-3, 1]"),
+        (lambda m: _tabu(m).__setitem__("fifo", "x"), "the tabu list 'x' is not a list"),
+        (lambda m: _tabu(m)["base"].__setitem__("counts", [[72, [-1, 2, 3]]]), "of leaf 72"),
+        (lambda m: _tabu(m)["base"].__setitem__("counts", [[72, [1]]]), "not 3 ints >= 0"),
+    ],
+)
+def test_a_damaged_unit_or_exploration_state_is_refused_by_name(
+    tmp_path: Path, edit: Callable[[dict], None], named: str
+) -> None:
+    """Fuzz cases: these used to load (a count of successes of 2.5, an action 9 of 3 in the
+    tabu list) or to fail later inside learning (negative or short counts: a math domain
+    error, an IndexError); each is now refused at load, naming the field."""
+    from agent import preset
+
+    env = gym.make("MountainCar-v0")
+    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
+    agent.learn(env, 3, reset_seed=0)
+    path = agent.save(tmp_path / "agent.npz")
+    arrays = dict(np.load(path, allow_pickle=False))
+    metadata = json.loads(bytes(arrays["metadata"]).decode())
+    edit(metadata)
+    arrays["metadata"] = np.frombuffer(json.dumps(metadata).encode(), dtype=np.uint8)
+    np.savez(tmp_path / "damaged.npz", **arrays)
+    with pytest.raises(ValueError, match=r"damaged\.npz") as refused:
+        TreeAgent.load(tmp_path / "damaged.npz")
+    assert named in str(refused.value)
