@@ -561,6 +561,8 @@ def _record_from_state(entry: Any, dims: int | None = None) -> Record:
     for name, value in (("R", reward), ("D", discount)):
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise ValueError(f"its {name} {value!r} is not a number")
+    if not 0.0 <= discount <= 1.0:  # a mean of gamma^k (a blend keeps a share of one)
+        raise ValueError(f"its D {discount!r} is not in [0, 1]")
     if isinstance(end_leaf, bool) or not isinstance(end_leaf, int) or end_leaf < _NOVEL:
         raise ValueError(f"its end leaf {end_leaf!r} is not an int >= {_NOVEL}")
     if (end is None) != (end_leaf == _TERMINAL):

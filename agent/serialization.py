@@ -859,5 +859,5 @@ def check_exploration_state(strategy: Exploration, leaves: Sequence[int], where:
     """After ``load_state_dict``: every leaf's epsilon is a probability."""
     for leaf in leaves:
         value = strategy.epsilon(leaf)
-        if not (isinstance(value, int | float) and 0.0 <= value <= 1.0):
+        if isinstance(value, bool) or not (isinstance(value, int | float) and 0.0 <= value <= 1.0):
             raise ValueError(f"{where}: exploration state gives leaf {leaf} epsilon {value!r}")

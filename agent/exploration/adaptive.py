@@ -13,7 +13,12 @@ from __future__ import annotations
 import math
 from typing import Any, Literal
 
-from agent.exploration.base import Exploration, leaf_table_from_json, leaf_table_to_json
+from agent.exploration.base import (
+    Exploration,
+    epsilon_from_json,
+    leaf_table_from_json,
+    leaf_table_to_json,
+)
 
 Variant = Literal["literal", "cn_exponent"]
 
@@ -154,4 +159,6 @@ class AdaptiveEpsilon(Exploration):
                 )
             counts[leaf] = list(row)
         self._counts = counts
-        self._epsilon = {k: float(v) for k, v in leaf_table_from_json(state["epsilon"]).items()}
+        self._epsilon = {
+            k: epsilon_from_json(k, v) for k, v in leaf_table_from_json(state["epsilon"]).items()
+        }

@@ -125,5 +125,24 @@ def leaf_table_to_json(table: dict[int, Any]) -> list[list[Any]]:
 
 
 def leaf_table_from_json(pairs: list[list[Any]]) -> dict[int, Any]:
-    """Inverse of :func:`leaf_table_to_json`."""
-    return {int(leaf): value for leaf, value in pairs}
+    """Inverse of :func:`leaf_table_to_json`; a ValueError names an entry that is not
+    ``[leaf, value]`` with a leaf id that is an int >= 0, or a leaf listed twice."""
+    if not isinstance(pairs, list):
+        raise ValueError(f"a per-leaf table must be a list of [leaf, value] pairs, got {pairs!r}")
+    table: dict[int, Any] = {}
+    for entry in pairs:
+        ok = isinstance(entry, list) and len(entry) == 2
+        leaf = entry[0] if ok else None
+        if not ok or isinstance(leaf, bool) or not isinstance(leaf, int) or leaf < 0:
+            raise ValueError(f"per-leaf entry {entry!r} is not [leaf id >= 0, value]")
+        if leaf in table:
+            raise ValueError(f"a per-leaf table lists leaf {leaf} twice")
+        table[leaf] = entry[1]
+    return table
+
+
+def epsilon_from_json(leaf: int, value: Any) -> float:
+    """A leaf's saved exploration rate: a number in [0, 1] (not a bool), as a float."""
+    if isinstance(value, bool) or not isinstance(value, int | float) or not 0.0 <= value <= 1.0:
+        raise ValueError(f"leaf {leaf}'s epsilon {value!r} is not a number in [0, 1]")
+    return float(value)

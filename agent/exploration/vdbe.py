@@ -12,7 +12,12 @@ from __future__ import annotations
 import math
 from typing import Any, Literal
 
-from agent.exploration.base import Exploration, leaf_table_from_json, leaf_table_to_json
+from agent.exploration.base import (
+    Exploration,
+    epsilon_from_json,
+    leaf_table_from_json,
+    leaf_table_to_json,
+)
 
 Form = Literal["boltzmann", "exponential"]
 
@@ -78,4 +83,6 @@ class VDBE(Exploration):
         return {"epsilon": leaf_table_to_json(self._epsilon)}
 
     def load_state_dict(self, state: dict[str, Any]) -> None:
-        self._epsilon = {k: float(v) for k, v in leaf_table_from_json(state["epsilon"]).items()}
+        self._epsilon = {
+            k: epsilon_from_json(k, v) for k, v in leaf_table_from_json(state["epsilon"]).items()
+        }

@@ -477,6 +477,8 @@ def _with_model_record(path: Path, out: Path, change: Callable[[list], None]) ->
         (lambda r: r[0][1][0].__setitem__(0, [True, 0.0]), "must be a list of 2 numbers"),
         (lambda r: r[0][1][0].__setitem__(1, "x"), "its R 'x' is not a number"),
         (lambda r: r[0][1][0].__setitem__(2, None), "its D None is not a number"),
+        (lambda r: r[0][1][0].__setitem__(2, -7), "its D -7 is not in [0, 1]"),
+        (lambda r: r[0][1][0].__setitem__(2, 1.5), "its D 1.5 is not in [0, 1]"),
         (lambda r: r[0][1][0].__setitem__(4, 10**6), "end leaf 1000000 is not a leaf"),
         (lambda r: r[0][1][0].__setitem__(4, -7), "is not an int >= -2"),
         (lambda r: r[0][1][0].__setitem__(4, 1.5), "is not an int >= -2"),
@@ -569,6 +571,10 @@ def _tabu(m: dict) -> dict:
         (lambda m: _tabu(m).__setitem__("fifo", "x"), "the tabu list 'x' is not a list"),
         (lambda m: _tabu(m)["base"].__setitem__("counts", [[72, [-1, 2, 3]]]), "of leaf 72"),
         (lambda m: _tabu(m)["base"].__setitem__("counts", [[72, [1]]]), "not 3 ints >= 0"),
+        (lambda m: _tabu(m)["base"].__setitem__("counts", [[2.5, [1, 2, 3]]]), "[2.5, [1, 2, 3]]"),
+        (lambda m: _tabu(m)["base"].__setitem__("epsilon", [[True, 0.5]]), "[True, 0.5] is not"),
+        (lambda m: _tabu(m)["base"].__setitem__("epsilon", [[0, 0.5], [0, 0.4]]), "leaf 0 twice"),
+        (lambda m: _tabu(m)["base"].__setitem__("epsilon", [[72, True]]), "72's epsilon True"),
     ],
 )
 def test_a_damaged_unit_or_exploration_state_is_refused_by_name(
