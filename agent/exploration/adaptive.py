@@ -15,6 +15,7 @@ from typing import Any, Literal
 
 from agent.exploration.base import (
     Exploration,
+    action_counts_from_json,
     epsilon_from_json,
     leaf_table_from_json,
     leaf_table_to_json,
@@ -148,17 +149,10 @@ class AdaptiveEpsilon(Exploration):
     def load_state_dict(self, state: dict[str, Any]) -> None:
         """Inverse of :meth:`state_dict`; a ValueError names a leaf whose counts are not one
         int >= 0 per action (the probabilities are checked by the agent file's loader)."""
-        counts: dict[int, list[int]] = {}
-        for leaf, row in leaf_table_from_json(state["counts"]).items():
-            ok = isinstance(row, list) and (not self.n_actions or len(row) == self.n_actions)
-            ok = ok and all(isinstance(n, int) and not isinstance(n, bool) and n >= 0 for n in row)
-            if not ok:
-                raise ValueError(
-                    f"adaptive epsilon's counts of leaf {leaf} are {row!r}, not "
-                    f"{self.n_actions} ints >= 0"
-                )
-            counts[leaf] = list(row)
-        self._counts = counts
+        self._counts = {
+            leaf: action_counts_from_json(leaf, row, self.n_actions)
+            for leaf, row in leaf_table_from_json(state["counts"]).items()
+        }
         self._epsilon = {
             k: epsilon_from_json(k, v) for k, v in leaf_table_from_json(state["epsilon"]).items()
         }

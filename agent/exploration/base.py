@@ -146,3 +146,12 @@ def epsilon_from_json(leaf: int, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float) or not 0.0 <= value <= 1.0:
         raise ValueError(f"leaf {leaf}'s epsilon {value!r} is not a number in [0, 1]")
     return float(value)
+
+
+def action_counts_from_json(leaf: int, row: Any, n_actions: int) -> list[int]:
+    """A leaf's saved per-action counts: ``n_actions`` ints >= 0 (any length before bind())."""
+    ok = isinstance(row, list) and (not n_actions or len(row) == n_actions)
+    ok = ok and all(isinstance(n, int) and not isinstance(n, bool) and n >= 0 for n in row)
+    if not ok:
+        raise ValueError(f"the counts of leaf {leaf} are {row!r}, not {n_actions} ints >= 0")
+    return list(row)

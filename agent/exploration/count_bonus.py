@@ -19,6 +19,7 @@ from typing import Any
 from agent.exploration.base import (
     Exploration,
     UniformSource,
+    action_counts_from_json,
     greedy_action,
     leaf_table_from_json,
     leaf_table_to_json,
@@ -84,5 +85,6 @@ class CountBonus(Exploration):
 
     def load_state_dict(self, state: dict[str, Any]) -> None:
         self._counts = {
-            k: [int(n) for n in v] for k, v in leaf_table_from_json(state["counts"]).items()
+            k: action_counts_from_json(k, v, self.n_actions)
+            for k, v in leaf_table_from_json(state["counts"]).items()
         }

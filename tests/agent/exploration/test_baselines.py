@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from collections import Counter
 
 import numpy as np
@@ -150,3 +151,27 @@ def test_optimistic_initialisation_sets_every_value() -> None:
 def test_bad_parameters_name_the_strategy(name: str, params: dict, error: type) -> None:
     with pytest.raises(error, match=name.split("-")[0]):
         make_exploration(name, **params)
+
+
+@pytest.mark.parametrize(
+    ("counts", "named"),
+    [
+        ([[7, [4, -1]]], "the counts of leaf 7 are [4, -1]"),
+        ([[7, [4]]], "not 2 ints >= 0"),
+        ([[7, [4, 1.5]]], "not 2 ints >= 0"),
+        ([[7, "x"]], "the counts of leaf 7 are 'x'"),
+        ([[-1, [1, 1]]], "[-1, [1, 1]] is not [leaf id >= 0, value]"),
+        ([[7, [1, 1]], [7, [2, 2]]], "lists leaf 7 twice"),
+        ("x", "must be a list of [leaf, value] pairs"),
+    ],
+)
+def test_a_count_bonus_state_with_bad_counts_is_refused(counts: object, named: str) -> None:
+    """Fuzz cases: a negative or short count used to load and fail inside sqrt or indexing."""
+    s = CountBonus(beta=1.0)
+    s.bind(2)
+    with pytest.raises(ValueError, match=re.escape(named)):
+        s.load_state_dict({"counts": counts})
+    good = CountBonus(beta=1.0)
+    good.bind(2)
+    good.load_state_dict({"counts": [[7, [4, 1]]]})
+    assert good.select(7, [0.0, 0.5], Fixed()) == 1  # the state of the test above, loaded
