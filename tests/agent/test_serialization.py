@@ -457,14 +457,28 @@ def test_infinite_bounds_where_the_space_is_bounded_are_refused(tmp_path: Path) 
         TreeAgent.load(tmp_path / "bad.npz")
 
 
-def _with_model_record(path: Path, out: Path, change: Callable[[list], None]) -> Path:
-    """A copy of the agent file at ``path`` whose first stored model epoch ``change`` edits."""
+def _refusal(tmp_path: Path, edit: Callable[[dict], None]) -> str:
+    """The error of loading a general MountainCar agent's file (3 episodes learnt) after
+    ``edit`` changed its JSON metadata; the undamaged file loads."""
+    from agent import preset
+
+    env = gym.make("MountainCar-v0")
+    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
+    agent.learn(env, 3, reset_seed=0)
+    path = agent.save(tmp_path / "agent.npz")
+    assert TreeAgent.load(path).model is not None
     arrays = dict(np.load(path, allow_pickle=False))
     metadata = json.loads(bytes(arrays["metadata"]).decode())
-    change(metadata["learner"]["model"]["records"])
+    edit(metadata)
     arrays["metadata"] = np.frombuffer(json.dumps(metadata).encode(), dtype=np.uint8)
-    np.savez(out, **arrays)
-    return out
+    np.savez(tmp_path / "damaged.npz", **arrays)
+    with pytest.raises(ValueError, match=r"damaged\.npz") as refused:
+        TreeAgent.load(tmp_path / "damaged.npz")
+    return str(refused.value)
+
+
+def _records(m: dict) -> list:
+    return m["learner"]["model"]["records"]
 
 
 @pytest.mark.parametrize(
@@ -492,17 +506,7 @@ def test_a_damaged_model_epoch_in_an_agent_file_is_refused_by_name(
 ) -> None:
     """Fuzz cases: a stored epoch's input of the wrong length used to load and fail later (or
     never); each damage is now refused at load, naming the file, the key and the field."""
-    from agent import preset
-
-    env = gym.make("MountainCar-v0")
-    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
-    agent.learn(env, 3, reset_seed=0)
-    path = agent.save(tmp_path / "agent.npz")
-    assert TreeAgent.load(path).model is not None  # the undamaged file loads
-    damaged = _with_model_record(path, tmp_path / "damaged.npz", change)
-    with pytest.raises(ValueError, match=r"damaged\.npz") as refused:
-        TreeAgent.load(damaged)
-    assert named in str(refused.value)
+    assert named in _refusal(tmp_path, lambda m: change(_records(m)))
 
 
 @pytest.mark.parametrize(
@@ -530,20 +534,7 @@ def test_a_damaged_model_field_in_an_agent_file_is_refused_by_name(
 ) -> None:
     """Fuzz cases: a fractional window, negative counts and priorities, and a queued node that
     is not a leaf used to load silently; each is now refused at load, by field."""
-    from agent import preset
-
-    env = gym.make("MountainCar-v0")
-    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
-    agent.learn(env, 3, reset_seed=0)
-    path = agent.save(tmp_path / "agent.npz")
-    arrays = dict(np.load(path, allow_pickle=False))
-    metadata = json.loads(bytes(arrays["metadata"]).decode())
-    metadata["learner"]["model"][field] = value
-    arrays["metadata"] = np.frombuffer(json.dumps(metadata).encode(), dtype=np.uint8)
-    np.savez(tmp_path / "damaged.npz", **arrays)
-    with pytest.raises(ValueError, match=r"damaged\.npz") as refused:
-        TreeAgent.load(tmp_path / "damaged.npz")
-    assert named in str(refused.value)
+    assert named in _refusal(tmp_path, lambda m: m["learner"]["model"].__setitem__(field, value))
 
 
 def _scale(m: dict) -> dict:
@@ -583,17 +574,4 @@ def test_a_damaged_unit_or_exploration_state_is_refused_by_name(
     """Fuzz cases: these used to load (a count of successes of 2.5, an action 9 of 3 in the
     tabu list) or to fail later inside learning (negative or short counts: a math domain
     error, an IndexError); each is now refused at load, naming the field."""
-    from agent import preset
-
-    env = gym.make("MountainCar-v0")
-    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
-    agent.learn(env, 3, reset_seed=0)
-    path = agent.save(tmp_path / "agent.npz")
-    arrays = dict(np.load(path, allow_pickle=False))
-    metadata = json.loads(bytes(arrays["metadata"]).decode())
-    edit(metadata)
-    arrays["metadata"] = np.frombuffer(json.dumps(metadata).encode(), dtype=np.uint8)
-    np.savez(tmp_path / "damaged.npz", **arrays)
-    with pytest.raises(ValueError, match=r"damaged\.npz") as refused:
-        TreeAgent.load(tmp_path / "damaged.npz")
-    assert named in str(refused.value)
+    assert named in _refusal(tmp_path, edit)
