@@ -3,8 +3,8 @@ smallest leaf, to ``min_leaf_fraction`` / FACTOR, while every other split keeps 
 
     python collision_width.py LAYOUT SEED LABEL FACTOR OUT
 
-FACTOR 1 is today's preset. The prototype replaces ``TreeAgent._collision_split`` in this
-process with a copy whose ``min_width`` is divided by FACTOR, then runs
+FACTOR 1 is today's preset. The prototype wraps ``TreeAgent._collision_split`` in this
+process so that it sees the leaf's smallest child width divided by FACTOR, then runs
 ``issue9_hold_terminals_dev/curves.py`` (600 episodes) from ``general_as_of(20)``.
 """
 
@@ -21,28 +21,26 @@ sys.path.insert(0, str(HERE.parent / "issue9_hold_terminals_dev"))
 from curves import run  # noqa: E402
 
 from agent import general_as_of  # noqa: E402
-from agent.collision_split import choose_collision_split  # noqa: E402
 from agent.tree_agent import TreeAgent  # noqa: E402
 
 
 def patch(factor: float) -> None:
+    """``TreeAgent._collision_split`` sees the leaf's box with ``min_width`` / ``factor``."""
+    original = TreeAgent._collision_split
+
     def collision_split(self: TreeAgent, leaf: int, action: int) -> bool:
         partition = self.partition
-        if not partition.may_split():
-            return False
-        firsts, collided = self.model.collisions(leaf, action)  # type: ignore[union-attr]
-        low, high, _, min_width = partition.split_box(leaf)
-        choice = choose_collision_split(
-            np.asarray(firsts, dtype=np.float64),
-            np.asarray(collided, dtype=np.bool_),
-            low,
-            high,
-            min_width / factor,
-        )
-        if choice is None:
-            return False
-        self._grow(leaf, partition.split_with_samples(leaf, *choice))
-        return True
+        box = partition.split_box
+
+        def finer(node: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+            low, high, root_width, min_width = box(node)
+            return low, high, root_width, min_width / factor
+
+        partition.split_box = finer  # an instance attribute shadows the method for this call
+        try:
+            return original(self, leaf, action)
+        finally:
+            del partition.split_box
 
     TreeAgent._collision_split = collision_split  # type: ignore[method-assign]
 
