@@ -54,7 +54,10 @@ def main() -> None:
     if args.episodes < 1:
         parser.error(f"--episodes must be >= 1, got {args.episodes}")
 
-    env = gym.make("BulletMaze-v0", maze=args.maze, max_episode_steps=5000, observation="lidar")
+    try:
+        env = gym.make("BulletMaze-v0", maze=args.maze, max_episode_steps=5000, observation="lidar")
+    except ValueError as error:
+        parser.error(f"--maze {args.maze!r}: {error}")
     general = preset("general")
     config = general.config
     agent = tree_agent_class(config)(
