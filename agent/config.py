@@ -252,6 +252,17 @@ class TreeConfig:
     instead of known: ``q_init`` = 0 is optimistic only where rewards are at most 0, and on
     FrozenLake, whose only reward is +1 at the goal, an untried action looked like the worst
     there is. Until a positive return is paid nothing changes. False: off (the paper)."""
+    greedy_min_epochs: int = 0
+    """A greedy choice among supported actions (beyond the paper): the greedy action of
+    ``predict`` is the best, by eq. (11)'s Q-bar, of the actions with at least this many
+    epochs stored in the model of ``planning = "sweep"`` for the leaf that holds the state
+    (every action competes when none has). Training is unchanged; only the policy the agent
+    reports is. After a split a child keeps its parent's Q-bar for an action until an epoch of
+    that action starts inside the child, so an action never tried there can lead on a value
+    learnt in the other half of the parent. On MountainCar, half of one dev run's lost steps
+    came from such choices (docs/paper-notes.md, "A greedy choice among supported actions").
+    It is the support constraint of batch-constrained Q-learning (Fujimoto, Meger and Precup
+    2019) read on the tree's stored epochs. 0: off (the paper). At most ``model_window``."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -465,6 +476,7 @@ class TreeConfig:
                 f"TreeConfig.optimistic_untried must be a bool, got {self.optimistic_untried!r}"
             )
         self._check_novelty()
+        self._check_greedy_min_epochs()
         _check_choice("failure_measure", self.failure_measure, ("mean", "every"))
         if self.failure_measure != "mean" and self.failure_gamma is None:
             raise ValueError(
@@ -594,6 +606,23 @@ class TreeConfig:
             raise ValueError(
                 f"TreeConfig.novelty_cells = {cells!r} needs planning = 'sweep' (the model "
                 f"stores the novel ends), got planning = {self.planning!r}"
+            )
+
+    def _check_greedy_min_epochs(self) -> None:
+        k = self.greedy_min_epochs
+        if isinstance(k, bool) or not isinstance(k, int) or k < 0:
+            raise ValueError(f"TreeConfig.greedy_min_epochs must be an int >= 0, got {k!r}")
+        if k == 0:
+            return
+        if self.planning != "sweep":
+            raise ValueError(
+                f"TreeConfig.greedy_min_epochs = {k!r} needs planning = 'sweep' (it counts the "
+                f"model's stored epochs), got planning = {self.planning!r}"
+            )
+        if isinstance(self.model_window, int) and k > self.model_window:
+            raise ValueError(
+                f"TreeConfig.greedy_min_epochs = {k!r} is more than model_window = "
+                f"{self.model_window!r}, the most epochs the model stores for one (leaf, action)"
             )
 
     def _check_model_split(self) -> None:

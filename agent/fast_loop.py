@@ -119,6 +119,8 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "presplit_beyond_dimensions": int,
     # the kernel keeps no record of untried actions: True turns the loop off (ineligible_reason)
     "optimistic_untried": bool,
+    # changes only predict's greedy choice, never a training step; needs the model
+    "greedy_min_epochs": int,
     # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)
     "table_cells": (int, type(None)),
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off
@@ -234,6 +236,7 @@ AGENT_ATTRIBUTES = {
     "q_init",
     "integer_inputs",
     "optimism",
+    "saved_support",  # read by predict alone (TreeConfig.greedy_min_epochs)
 }
 AGENT_CLASSES: dict[type, tuple[type, set[str]]] = {
     TreeAgent: (PartitionTree, AGENT_ATTRIBUTES),

@@ -30,7 +30,7 @@ from agent.partition import Partition
 from agent.partition_tree import PartitionTree
 from agent.random_stream import UniformStream
 from agent.scale import ReturnScale, ReturnSpread, RewardScale
-from agent.smdp import epoch_discounts, epoch_returns, leaf_update
+from agent.smdp import epoch_discounts, epoch_returns, greedy_among, leaf_update
 from agent.spaces import action_count, integer_inputs, observation_bounds
 
 if TYPE_CHECKING:
@@ -129,6 +129,9 @@ class SMDPAgent:
             LeafModel(self.n_actions, cfg.model_window) if cfg.planning == "sweep" else None
         )
         """The empirical SMDP model of ``TreeConfig.planning="sweep"`` (None otherwise)."""
+        self.saved_support: list[list[int]] | None = None
+        """``TreeConfig.greedy_min_epochs``: the stored-epoch counts a policy-only file was
+        saved with (None otherwise); they stay a floor on the model's counts for its leaves."""
         self.partition: Partition = self._make_partition(low, high)
         if self._track_scale:
             if hasattr(self.partition, "scale"):
@@ -597,8 +600,33 @@ class SMDPAgent:
         leaf = self.partition.leaf_of(x)
         row = self.q[leaf]
         if deterministic:
-            return max(range(self.n_actions), key=row.__getitem__)
+            return greedy_among(row, self._supported([self], [leaf]))
         return self.exploration.select(leaf, row, self.uniform)
+
+    def support(self, leaf: int) -> list[int]:
+        """Epochs of each action stored in the model for ``leaf`` (at least the counts a
+        policy-only file was saved with); zeros without a model."""
+        model = self.model
+        counts = (
+            [0] * self.n_actions
+            if model is None
+            else [model.count(leaf, a) for a in range(self.n_actions)]
+        )
+        saved = self.saved_support
+        if saved is not None and leaf < len(saved):
+            counts = [max(c, s) for c, s in zip(counts, saved[leaf], strict=True)]
+        return counts
+
+    def _supported(self, agents: Sequence[SMDPAgent], leaves: Sequence[int]) -> list[int] | None:
+        """``TreeConfig.greedy_min_epochs``: the actions with at least that many stored epochs
+        in every tree's leaf (``agents[i]`` holding ``leaves[i]``); None when the option is off
+        or no action has them (then every action competes)."""
+        k = self.config.greedy_min_epochs
+        if k == 0:
+            return None
+        counts = [agent.support(leaf) for agent, leaf in zip(agents, leaves, strict=True)]
+        allowed = [a for a in range(self.n_actions) if min(c[a] for c in counts) >= k]
+        return allowed or None
 
     def leaf_of(self, obs: Any) -> int:
         """Id of the leaf that holds ``obs``."""
@@ -701,6 +729,9 @@ class SMDPAgent:
             "visits": np.asarray(self.visits, dtype=np.int64),
             **{f"partition.{k}": v for k, v in partition_arrays.items()},
         }
+        if policy_only and self.config.greedy_min_epochs > 0:  # the model is left out
+            support = [self.support(leaf) for leaf in range(len(self.q))]
+            arrays["support"] = np.asarray(support, dtype=np.int64).reshape(len(self.q), -1)
         return serialization.write_agent_file(path, metadata, arrays)
 
     @classmethod
@@ -850,6 +881,8 @@ class SMDPAgent:
         )
         agent.q = saved.q.tolist()
         agent.visits = saved.visits.tolist()
+        if saved.support is not None:
+            agent.saved_support = saved.support.tolist()
         agent.episodes_done = saved.episodes_done
         return agent
 

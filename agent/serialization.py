@@ -18,7 +18,8 @@ built from them:
   ``ValueError`` naming the file and the defect.
 
 A *policy-only* file (:data:`LEARNING_ARRAYS` left out) holds what acting needs: the partition,
-Q-bar, counts, the strategy and the generator. Loaded, it acts exactly like the full file; it
+Q-bar, counts, the strategy and the generator (and, with ``TreeConfig.greedy_min_epochs``, the
+model's stored-epoch counts, entry ``support``). Loaded, it acts exactly like the full file; it
 continues learning with empty error buffers, so only the full file resumes training exactly.
 
 This module imports no agent class: the learner (``SMDPAgent.save`` / ``load``) gathers and
@@ -349,6 +350,9 @@ class SavedAgent:
     policy_only: bool
     learner: dict[str, Any] | None = None
     """The learner's state beyond the paper (``scale``, ``model``), if the file has any."""
+    support: np.ndarray | None = None
+    """A policy-only file's stored-epoch counts per (leaf, action), which the greedy choice of
+    ``TreeConfig.greedy_min_epochs`` reads in place of the model (None otherwise)."""
 
     def fail(self, message: str) -> ValueError:
         """A ``ValueError`` naming the file."""
@@ -413,6 +417,8 @@ def _read_archive(
     policy_only = meta.get("policy_only", False)
     partition_meta = meta["partition"]
     expected = _expected_entries(kind, policy_only, fail)
+    if policy_only and config.greedy_min_epochs > 0:  # the greedy choice's counts
+        expected.append("support")
     unknown = sorted(set(members) - {"metadata", "q", "visits"} - set(expected))
     missing = sorted(
         {"q", "visits", *expected} - set(members) - {f"partition.{n}" for n in OPTIONAL_ARRAYS}
@@ -429,7 +435,7 @@ def _read_archive(
         partition_arrays = {
             entry[len("partition.") :]: read(entry, *_TREE_DTYPES[entry[len("partition.") :]])
             for entry in expected
-            if entry in members
+            if entry in members and entry.startswith("partition.")
         }
         if policy_only:
             capacity = config.split_min_samples
@@ -450,6 +456,14 @@ def _read_archive(
         raise fail("entry 'q' holds values that are not finite")
     if (visits < 0).any():
         raise fail("entry 'visits' holds negative counts")
+    support = None
+    if "support" in expected:
+        support = read("support", "i8", 2)
+        if support.shape != (n_ids, n_actions):
+            raise fail(f"entry 'support' has shape {support.shape}, expected {(n_ids, n_actions)}")
+        window = config.model_window
+        if ((support < 0) | (support > window)).any():
+            raise fail(f"entry 'support' holds counts outside [0, model_window = {window}]")
 
     box = meta["observation_space"]
     dtype = np.dtype(box["dtype"])
@@ -478,6 +492,7 @@ def _read_archive(
         visits=visits,
         policy_only=policy_only,
         learner=meta.get("learner"),
+        support=support,
     )
 
 

@@ -7,6 +7,8 @@ per-call cost would dominate.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 
 def epoch_returns(rewards: list[float], bootstrap: float, gamma: float) -> list[float]:
     """Eq. (9): the discounted return of each input of an epoch.
@@ -48,3 +50,10 @@ def leaf_update(q: float, returns: list[float], alpha: float) -> tuple[float, li
     errors = [g - q for g in returns]
     new_q = (1.0 - alpha) * q + alpha * (sum(returns) / len(returns))
     return new_q, errors
+
+
+def greedy_among(row: Sequence[float], allowed: Sequence[int] | None = None) -> int:
+    """Eq. (11)'s greedy action of a Q-bar row: the largest value, the lowest index among ties;
+    only the ``allowed`` actions compete when given (``TreeConfig.greedy_min_epochs``)."""
+    actions = range(len(row)) if allowed is None else allowed
+    return max(actions, key=row.__getitem__)

@@ -42,7 +42,7 @@ from agent.exploration.base import greedy_action
 from agent.leaf_model import Stored
 from agent.learner import Bounds
 from agent.partition_tree import PartitionTree
-from agent.smdp import epoch_returns
+from agent.smdp import epoch_returns, greedy_among
 from agent.tree_agent import TreeAgent
 
 
@@ -198,7 +198,7 @@ class TreeEnsembleAgent(TreeAgent):
         leaves = self._leaves(x)
         row = self.mean_row(leaves)
         if deterministic:
-            return max(range(self.n_actions), key=row.__getitem__)
+            return greedy_among(row, self._supported(self.members, leaves))
         return self.exploration.select(leaves[0], row, self.uniform)
 
     @property
