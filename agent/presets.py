@@ -106,7 +106,7 @@ GENERAL = Preset(
     "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals "
     "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs, optimism for "
     "untried actions, a presplit of at most the first 4 of more than 8 inputs, gamma 0.9995 once "
-    "every terminal is measured a failure",
+    "every terminal is measured a failure, a greedy choice among actions with a stored epoch",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -131,6 +131,7 @@ GENERAL = Preset(
         presplit_beyond_dimensions=4,
         failure_gamma=0.9995,
         failure_measure="every",
+        greedy_min_epochs=1,
     ),
     "adaptive+tabu",
 )
@@ -148,6 +149,7 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     17: {"presplit_max_dimensions": None, "presplit_beyond_dimensions": 0},
     19: {"failure_gamma": None},
     20: {"failure_measure": "mean"},
+    23: {"greedy_min_epochs": 0},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none).
@@ -156,7 +158,8 @@ and presplit into 512 to 65,536 leaves from 9 to 16. Part 18 changed none; part 
 runs whose terminals are measured failures (CartPole's fall, never a goal); part 20 keeps the
 latch shut where any terminal paid more than going on (FrozenLake's goal). Part 21's policy
 splits were adopted on 20 dev seeds and withdrawn on 20 more (docs/paper-notes.md, "Policy
-splits"), so it changed none."""
+splits"), so it changed none. Part 22 changed none; part 23 changes only the greedy choice of
+``predict``, never a training step."""
 
 
 def general_as_of(part: int) -> TreeConfig:

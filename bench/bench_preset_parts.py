@@ -52,6 +52,8 @@ PARTS: dict[int, str] = {
     "the latch stays shut and their runs should be the same",
     20: "failure_measure 'every': the largest terminal reward is kept beside the sum; the latch "
     "stays shut on all three tasks, so their runs should be the same",
+    23: "greedy_min_epochs 1: only predict's greedy choice reads the model's counts; no training "
+    "step changes, so every run should be the same (bench/bench_greedy_choice.py times predict)",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

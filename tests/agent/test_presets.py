@@ -49,6 +49,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"presplit_max_dimensions", "presplit_beyond_dimensions"}  # issue 9, part 17
     others |= {"failure_gamma"}  # issue 9, part 19
     others |= {"failure_measure"}  # issue 9, part 20
+    others |= {"greedy_min_epochs"}  # issue 9, part 23
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -66,6 +67,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.failure_gamma == 0.9995  # part 19 ("A discount gated on failure")
     assert general.failure_measure == "every"  # part 20 (the same section)
     assert general.policy_splits is False  # part 21: withdrawn on more dev seeds
+    assert general.greedy_min_epochs == 1  # part 23 ("A greedy choice among supported actions")
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -204,7 +206,7 @@ def test_part21_comparisons_add_policy_splits_to_the_preset(name: str, seed: int
         "preset": "general",
         "config": {"policy_splits": True},
     }
-    assert preset("general").config == general_as_of(20)
+    assert general_as_of(22) == general_as_of(20)  # the preset its stored runs were made with
     assert data["experiment"]["baseline"] == "general"
     assert data["experiment"]["seed"] == seed
 
@@ -221,7 +223,9 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(20) == now
+    assert general_as_of(23) == now
+    now = dataclasses.replace(now, greedy_min_epochs=0)
+    assert general_as_of(22) == general_as_of(21) == general_as_of(20) == now
     assert general_as_of(19) == dataclasses.replace(now, failure_measure="mean")
     now = dataclasses.replace(now, failure_gamma=None, failure_measure="mean")
     assert general_as_of(18) == general_as_of(17) == now
@@ -258,3 +262,21 @@ def test_general_as_of_takes_the_value_before_the_first_later_change(
         assert general_as_of(30).gamma == preset("general").config.gamma
         assert general_as_of(29).gamma == general_as_of(11).gamma == 0.995
         assert general_as_of(10).gamma == general_as_of(7).gamma == 0.99
+
+
+@pytest.mark.parametrize(("name", "seed"), [("classic", 23101), ("mountaincar", 11101)])
+def test_part23_comparisons_set_the_preset_against_part_22s(name: str, seed: int) -> None:
+    """Part 23 changes only the greedy choice: ``general`` is the preset by name, and
+    ``general-part22`` the preset without the option, which is part 22's preset."""
+    data = tomllib.loads((EXPERIMENT_DIR / f"greedy_support_{name}.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    old = by_name["general-part22"]
+    assert old == {
+        "name": "general-part22",
+        "preset": "general",
+        "config": {"greedy_min_epochs": 0},
+    }
+    assert dataclasses.replace(preset("general").config, greedy_min_epochs=0) == general_as_of(22)
+    assert data["experiment"]["baseline"] == "general-part22"
+    assert data["experiment"]["seed"] == seed

@@ -1,0 +1,39 @@
+"""Prototype check on the other tasks (integer inputs through ``adapt_env``; the general
+preset, ``general_as_of(22)``): one training run (EPISODES), then 100 greedy episodes (reset
+seeds 10,000 + i) under k = 0, 1 and 2; the mean greedy return.
+
+    python tasks_support.py OUT TASK EPISODES SEED [SEED ...]
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import warnings
+from pathlib import Path
+
+import gymnasium as gym
+
+from agent import adapt_env, general_as_of, preset
+from agent.tree_ensemble import tree_agent_class
+from supported_greedy import greedy_action
+
+warnings.simplefilter("ignore")
+out, task, episodes = Path(sys.argv[1]), sys.argv[2], int(sys.argv[3])
+for seed in map(int, sys.argv[4:]):
+    env = adapt_env(gym.make(task))
+    config = general_as_of(22)
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, preset("general").make_exploration(), seed, config)
+    agent.learn(env, episodes, reset_seed=seed)
+    for k in (0, 1, 2):
+        returns = []
+        for i in range(100):
+            obs, _ = env.reset(seed=10_000 + i)
+            total, done = 0.0, False
+            while not done:
+                obs, r, term, trunc, _ = env.step(greedy_action(agent, obs, k))
+                total += float(r)
+                done = term or trunc
+            returns.append(total)
+        with out.open("a") as f:
+            f.write(json.dumps({"task": task, "seed": seed, "k": k, "greedy": sum(returns) / len(returns)}) + "\n")
