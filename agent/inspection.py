@@ -25,6 +25,9 @@ class LeafInfo:
     """Epochs that held each action in this leaf (since the leaf was made, by default)."""
     epsilon: float
     """The exploration strategy's epsilon in this leaf."""
+    greedy: int
+    """The action ``predict`` chooses in this leaf (eq. (11), lowest index among ties; with
+    ``TreeConfig.greedy_min_epochs`` only the actions with stored epochs compete)."""
 
 
 class _Partition(Protocol):

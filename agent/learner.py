@@ -653,6 +653,7 @@ class SMDPAgent:
             q_values=tuple(self.q[leaf]),
             visits=tuple(self.visits[leaf]),
             epsilon=self.exploration.epsilon(leaf),
+            greedy=greedy_among(self.q[leaf], self._supported([self], [leaf])),
         )
 
     def leaves(self) -> list[LeafInfo]:

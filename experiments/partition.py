@@ -55,13 +55,13 @@ def draw_layout(axes: Axes, layout: Any) -> None:
 
 
 def greedy_actions(leaves: Sequence[Any]) -> np.ndarray:
-    """Greedy action of each leaf (lowest index among ties, as ``agent.predict``); -1 when all
-    of a leaf's values are equal (nothing learned there)."""
+    """Greedy action of each leaf (``LeafInfo.greedy``, what ``agent.predict`` chooses there);
+    -1 when all of a leaf's values are equal (nothing learned there)."""
     actions = np.full(len(leaves), -1)
     for index, leaf in enumerate(leaves):
         q = np.asarray(leaf.q_values, dtype=float)
         if q.size and not np.all(q == q[0]):
-            actions[index] = int(np.argmax(q))
+            actions[index] = int(leaf.greedy)
     return actions
 
 

@@ -43,6 +43,7 @@ def test_an_unsupported_inherited_value_does_not_lead() -> None:
     assert agent.predict(np.array([0.2])) == 0  # no action has one: all compete
     off, _, _ = _split_agent(0)
     assert off.predict(np.array([0.7])) == 0  # the paper's greedy choice
+    assert (agent.leaf_info(right).greedy, off.leaf_info(right).greedy) == (1, 0)  # as predict
 
 
 def test_the_count_must_reach_k() -> None:
