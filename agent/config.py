@@ -612,16 +612,20 @@ class TreeConfig:
         k = self.greedy_min_epochs
         if isinstance(k, bool) or not isinstance(k, int) or k < 0:
             raise ValueError(f"TreeConfig.greedy_min_epochs must be an int >= 0, got {k!r}")
-        if k == 0:
-            return
+        if k > 0:
+            self._check_stored_epochs("greedy_min_epochs", k, "it counts the model's stored epochs")
+
+    def _check_stored_epochs(self, name: str, count: int, why: str) -> None:
+        """A count of the model's stored epochs of one (leaf, action): it needs the model and
+        at most ``model_window`` epochs."""
         if self.planning != "sweep":
             raise ValueError(
-                f"TreeConfig.greedy_min_epochs = {k!r} needs planning = 'sweep' (it counts the "
-                f"model's stored epochs), got planning = {self.planning!r}"
+                f"TreeConfig.{name} = {count!r} needs planning = 'sweep' ({why}), "
+                f"got planning = {self.planning!r}"
             )
-        if isinstance(self.model_window, int) and k > self.model_window:
+        if isinstance(self.model_window, int) and count > self.model_window:
             raise ValueError(
-                f"TreeConfig.greedy_min_epochs = {k!r} is more than model_window = "
+                f"TreeConfig.{name} = {count!r} is more than model_window = "
                 f"{self.model_window!r}, the most epochs the model stores for one (leaf, action)"
             )
 
@@ -653,16 +657,9 @@ class TreeConfig:
                 f"TreeConfig.model_split_epochs must be an int >= 4 (two epochs on each side) "
                 f"or None, got {epochs!r}"
             )
-        if self.planning != "sweep":
-            raise ValueError(
-                f"TreeConfig.model_split_epochs = {epochs!r} needs planning = 'sweep' (it tests "
-                f"the model's stored epochs), got planning = {self.planning!r}"
-            )
-        if isinstance(self.model_window, int) and epochs > self.model_window:
-            raise ValueError(
-                f"TreeConfig.model_split_epochs = {epochs!r} is more than model_window = "
-                f"{self.model_window!r}, the most epochs the model stores for one (leaf, action)"
-            )
+        self._check_stored_epochs(
+            "model_split_epochs", epochs, "it tests the model's stored epochs"
+        )
 
     def loop_options(self) -> dict[str, Any]:
         """The options set here that only the tree ensemble's loop runs

@@ -11,6 +11,7 @@ import json
 import sys
 import warnings
 from pathlib import Path
+from typing import Any
 
 import gymnasium as gym
 
@@ -18,22 +19,37 @@ from agent import adapt_env, general_as_of, preset
 from agent.tree_ensemble import tree_agent_class
 from supported_greedy import greedy_action
 
-warnings.simplefilter("ignore")
-out, task, episodes = Path(sys.argv[1]), sys.argv[2], int(sys.argv[3])
-for seed in map(int, sys.argv[4:]):
+
+def trained(task: str, episodes: int, seed: int, exploration: Any = None) -> tuple[Any, gym.Env]:
+    """An agent of part 22's preset after ``episodes`` on ``task`` (first reset seed = seed)."""
     env = adapt_env(gym.make(task))
     config = general_as_of(22)
-    agent = tree_agent_class(config)(env.observation_space, env.action_space, preset("general").make_exploration(), seed, config)
+    strategy = preset("general").make_exploration() if exploration is None else exploration
+    agent = tree_agent_class(config)(env.observation_space, env.action_space, strategy, seed, config)
     agent.learn(env, episodes, reset_seed=seed)
-    for k in (0, 1, 2):
-        returns = []
-        for i in range(100):
-            obs, _ = env.reset(seed=10_000 + i)
-            total, done = 0.0, False
-            while not done:
-                obs, r, term, trunc, _ = env.step(greedy_action(agent, obs, k))
-                total += float(r)
-                done = term or trunc
-            returns.append(total)
-        with out.open("a") as f:
-            f.write(json.dumps({"task": task, "seed": seed, "k": k, "greedy": sum(returns) / len(returns)}) + "\n")
+    return agent, env
+
+
+def greedy_returns(agent: Any, env: gym.Env, k: int, starts: int) -> list[float]:
+    """Returns of greedy episodes under the prototype's k, reset with seeds 10,000 + i."""
+    returns = []
+    for i in range(starts):
+        obs, _ = env.reset(seed=10_000 + i)
+        total, done = 0.0, False
+        while not done:
+            obs, r, term, trunc, _ = env.step(greedy_action(agent, obs, k))
+            total += float(r)
+            done = term or trunc
+        returns.append(total)
+    return returns
+
+
+if __name__ == "__main__":
+    warnings.simplefilter("ignore")
+    out, task, episodes = Path(sys.argv[1]), sys.argv[2], int(sys.argv[3])
+    for seed in map(int, sys.argv[4:]):
+        agent, env = trained(task, episodes, seed)
+        for k in (0, 1, 2):
+            returns = greedy_returns(agent, env, k, 100)
+            with out.open("a") as f:
+                f.write(json.dumps({"task": task, "seed": seed, "k": k, "greedy": sum(returns) / len(returns)}) + "\n")
