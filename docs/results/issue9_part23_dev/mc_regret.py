@@ -4,11 +4,13 @@ episodes from 41 start positions, grouped by how many stored epochs the leaf's m
 for the chosen action and for the best one.
 
     python mc_regret.py SEED [SEED ...]
+    K=1 python mc_regret.py SEED ...     (the greedy choice of ``supported_greedy`` with k = 1)
 """
 
 from __future__ import annotations
 
 import json
+import os
 import sys
 from collections import defaultdict
 
@@ -18,8 +20,10 @@ import numpy as np
 from agent import general_as_of, preset
 from agent.tree_ensemble import tree_agent_class
 from mc_optimal import qstar
+from supported_greedy import greedy_action
 
 GRID = np.linspace(-0.6, -0.4, 41)
+K = int(os.environ.get("K", "0"))
 
 
 def bucket(n: int) -> str:
@@ -45,7 +49,7 @@ for seed in map(int, sys.argv[1:]):
         for _ in range(200):
             leaf = agent.leaf_of(obs)
             row = agent.q[leaf]
-            a = max(range(3), key=row.__getitem__)
+            a = greedy_action(agent, obs, K)
             q = qstar(float(obs[0]), float(obs[1]))
             best = int(np.argmin(q))
             r = q[a] - q[best]
@@ -61,6 +65,7 @@ for seed in map(int, sys.argv[1:]):
                 break
     out = {
         "seed": seed,
+        "k": K,
         "mean_steps": total_steps / len(GRID),
         "mean_optimal": float(np.mean([min(qstar(float(x), 0.0)) for x in GRID])),
         "regret_by_counts(chosen,best)": {f"{k[0]}|{k[1]}": [round(regret[k], 1), count[k]] for k in sorted(regret)},
