@@ -1,7 +1,10 @@
 """Part 23's held-out rows: each run of today's preset (``greedy_min_epochs`` 1) paired with the
-stored run of part 22's preset with the same run seed. Training must be the same run (the
-training CSVs' SHA-256 in the sidecars are equal); only the greedy evaluation (20 episodes)
-differs. Prints, per seed set and task, runs at the target, means, and per-run returns.
+stored run of part 22's preset with the same run seed. Training should be the same run (the
+training CSVs' SHA-256 in the sidecars equal), and only the greedy evaluation (20 episodes)
+differ; a run whose training differs is named (its stored run was made by an earlier preset).
+On 11101 and 11104 the stored runs are part 11's preset, and part 12 changed 4 of their 20
+MountainCar runs, so part 22's arm was run there too (``--only general-part22``) and is the
+baseline wherever the new folder holds it. Prints, per seed set and task, runs at the target, means, and per-run returns.
 
     python pair.py            (from this folder; reads ../issue9_part*_heldout_*)
 """
@@ -45,8 +48,9 @@ def runs(folder: Path, task: str, strategy: str) -> dict[int, tuple[str, float]]
 
 def compare(label: str, task: str, new: dict, old: dict) -> tuple[int, int, int]:
     assert set(new) == set(old) and len(new) == 10, (label, task, len(new), len(old))
-    for seed in new:
-        assert new[seed][0] == old[seed][0], f"{label} {task} run {seed}: training differs"
+    differ = [seed for seed in sorted(new) if new[seed][0] != old[seed][0]]
+    if differ:  # the stored run was made by an earlier preset (part 12 changed 2 of 20)
+        print(f"{label} {task}: training differs from the stored run on runs {differ}")
     target = TARGET[task]
     olds = [old[s][1] for s in sorted(old)]
     news = [new[s][1] for s in sorted(new)]
@@ -70,7 +74,12 @@ def main() -> None:
             print(f"{seed}: not run")
             continue
         task = "MountainCar-v0"
-        got = compare(str(seed), task, runs(new_folder, task, "general"), runs(RESULTS / folder, task, name))
+        if len(runs(new_folder, task, "general")) < 10:
+            print(f"{seed}: not finished")
+            continue
+        rerun = runs(new_folder, task, "general-part22")  # part 22's own runs, where made here
+        stored = rerun if len(rerun) == 10 else runs(RESULTS / folder, task, name)
+        got = compare(str(seed), task, runs(new_folder, task, "general"), stored)
         totals.setdefault(task, [0, 0, 0])
         totals[task] = [a + b for a, b in zip(totals[task], got)]
     fresh = RESULTS / "issue9_part23_heldout_classic"
