@@ -88,6 +88,10 @@ def _cases() -> list[tuple[str, list[str], list[str]]]:
                 "hold_exploration='false'",
                 "nofield=1",
                 "x",
+                "greedy_min_epochs=-1",
+                "greedy_min_epochs=1.5",
+                "greedy_min_epochs=true",
+                "greedy_min_epochs=2",  # needs planning = 'sweep'
             ],
         ),
         ("--maze", train, [*TEXT, "nosuch", "/etc/passwd", "missing.toml", "{afile}"]),
