@@ -38,10 +38,11 @@ def greedy_action(agent, obs, k: int) -> int:
     return max(actions, key=row.__getitem__)
 
 
-def episodes(agent, env, seed: int, k: int) -> list[float]:
+def greedy_returns(agent, env, k: int, reset_seeds) -> list[float]:
+    """Returns of greedy episodes under k, one reset with each seed."""
     out = []
-    for i in range(20):
-        obs, _ = env.reset(seed=1_000_000 + 1000 * seed + i)
+    for reset_seed in reset_seeds:
+        obs, _ = env.reset(seed=reset_seed)
         total, done = 0.0, False
         while not done:
             obs, reward, terminated, truncated, _ = env.step(greedy_action(agent, obs, k))
@@ -49,6 +50,11 @@ def episodes(agent, env, seed: int, k: int) -> list[float]:
             done = terminated or truncated
         out.append(total)
     return out
+
+
+def episodes(agent, env, seed: int, k: int) -> list[float]:
+    """The 20 greedy episodes of the part 4 protocol."""
+    return greedy_returns(agent, env, k, [1_000_000 + 1000 * seed + i for i in range(20)])
 
 
 def main(task: str, out: Path, seeds: list[int]) -> None:

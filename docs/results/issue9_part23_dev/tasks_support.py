@@ -17,7 +17,7 @@ import gymnasium as gym
 
 from agent import adapt_env, general_as_of, preset
 from agent.tree_ensemble import tree_agent_class
-from supported_greedy import greedy_action
+from supported_greedy import greedy_returns
 
 
 def trained(task: str, episodes: int, seed: int, exploration: Any = None) -> tuple[Any, gym.Env]:
@@ -30,26 +30,12 @@ def trained(task: str, episodes: int, seed: int, exploration: Any = None) -> tup
     return agent, env
 
 
-def greedy_returns(agent: Any, env: gym.Env, k: int, starts: int) -> list[float]:
-    """Returns of greedy episodes under the prototype's k, reset with seeds 10,000 + i."""
-    returns = []
-    for i in range(starts):
-        obs, _ = env.reset(seed=10_000 + i)
-        total, done = 0.0, False
-        while not done:
-            obs, r, term, trunc, _ = env.step(greedy_action(agent, obs, k))
-            total += float(r)
-            done = term or trunc
-        returns.append(total)
-    return returns
-
-
 if __name__ == "__main__":
     warnings.simplefilter("ignore")
     out, task, episodes = Path(sys.argv[1]), sys.argv[2], int(sys.argv[3])
     for seed in map(int, sys.argv[4:]):
         agent, env = trained(task, episodes, seed)
         for k in (0, 1, 2):
-            returns = greedy_returns(agent, env, k, 100)
+            returns = greedy_returns(agent, env, k, [10_000 + i for i in range(100)])
             with out.open("a") as f:
                 f.write(json.dumps({"task": task, "seed": seed, "k": k, "greedy": sum(returns) / len(returns)}) + "\n")

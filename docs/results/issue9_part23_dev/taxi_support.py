@@ -13,8 +13,8 @@ import sys
 import warnings
 from pathlib import Path
 
-from supported_greedy import KS
-from tasks_support import greedy_returns, trained
+from supported_greedy import KS, greedy_returns
+from tasks_support import trained
 
 if __name__ == "__main__":
     warnings.simplefilter("ignore")
@@ -22,6 +22,6 @@ if __name__ == "__main__":
     for seed in map(int, sys.argv[2:]):
         agent, env = trained("Taxi-v4", 600, seed, exploration="adaptive+tabu")
         for k in KS:
-            returns = greedy_returns(agent, env, k, 10)
+            returns = greedy_returns(agent, env, k, [10_000 + i for i in range(10)])
             with out.open("a") as f:
                 f.write(json.dumps({"task": "Taxi-v4", "seed": seed, "k": k, "returns": returns, "delivered": sum(r > 0 for r in returns)}) + "\n")
