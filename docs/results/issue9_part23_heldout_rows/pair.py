@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 from pathlib import Path
 
 RESULTS = Path(__file__).resolve().parent.parent
@@ -66,6 +67,47 @@ def compare(label: str, task: str, new: dict, old: dict) -> tuple[int, int, int]
     return n_old, n_new, 10
 
 
+def maze_runs(folder: Path, layout: str) -> dict[int, tuple[str, float, int, int]]:
+    """Run seed -> (training SHA-256, greedy steps / optimum, greedy episodes at the cap,
+    greedy episodes) of the "general" runs on one layout."""
+    out = {}
+    for sidecar in sorted((folder / "runs" / layout).glob("general__*.json")):
+        meta = json.loads(sidecar.read_text())
+        with sidecar.with_suffix(".eval.csv").open() as f:
+            rows = list(csv.DictReader(f))
+        steps = [int(row["steps"]) for row in rows]
+        capped = sum(row["truncated"] == "1" for row in rows)
+        ratio = sum(steps) / len(steps) / float(meta["optimal_steps"])
+        out[int(meta["seed"])] = (meta["data_sha256"], ratio, capped, len(rows))
+    return out
+
+
+def mazes() -> None:
+    """The maze suite's test split (seed 14102): part 14's stored runs (the same training as
+    part 22's preset) against part 23's greedy choice on the same runs."""
+    new_folder = RESULTS / "issue9_part23_heldout_mazes_seed14102"
+    old_folder = RESULTS / "issue9_part14_heldout_mazes"
+    if not new_folder.exists():
+        return
+    logs = {"old": [], "new": []}
+    for layout in sorted(p.name for p in (old_folder / "runs").iterdir()):
+        new, old = maze_runs(new_folder, layout), maze_runs(old_folder, layout)
+        if len(new) < len(old):
+            print(f"mazes {layout}: not finished")
+            continue
+        for seed in sorted(old):
+            same = "same training" if new[seed][0] == old[seed][0] else "TRAINING DIFFERS"
+            print(
+                f"mazes {layout} run {seed}: greedy {old[seed][1]:.3f}x ({old[seed][2]} of "
+                f"{old[seed][3]} capped) -> {new[seed][1]:.3f}x ({new[seed][2]} capped); {same}"
+            )
+            logs["old"].append(math.log(old[seed][1]))
+            logs["new"].append(math.log(new[seed][1]))
+    if logs["old"]:
+        gm = {k: math.exp(sum(v) / len(v)) for k, v in logs.items()}
+        print(f"mazes: geometric-mean greedy steps / optimum {gm['old']:.3f} -> {gm['new']:.3f}")
+
+
 def main() -> None:
     totals: dict[str, list[int]] = {}
     for seed, (folder, name) in STORED.items():
@@ -92,6 +134,7 @@ def main() -> None:
                 totals[task] = [a + b for a, b in zip(totals[task], got)]
     for task, (n_old, n_new, n) in totals.items():
         print(f"total {task}: part 22 {n_old} of {n}, part 23 {n_new} of {n}")
+    mazes()
 
 
 if __name__ == "__main__":
