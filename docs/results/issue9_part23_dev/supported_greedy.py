@@ -4,6 +4,7 @@ none has k). Training is untouched (the prototype only changes ``predict``), so 
 run per seed is evaluated under every k (k = 0 is today's greedy choice).
 
     python supported_greedy.py TASK OUT SEED [SEED ...]
+    OVERRIDES='{"policy_splits": true}' python supported_greedy.py ...   (TreeConfig fields)
 
 One JSON line per (seed, k): the 20 greedy episodes of the part 4 protocol (reset seeds
 10^6 + 1000 seed + i) and their mean; training is today's preset (``general_as_of(22)``),
@@ -12,7 +13,9 @@ One JSON line per (seed, k): the 20 greedy episodes of the part 4 protocol (rese
 
 from __future__ import annotations
 
+import dataclasses
 import json
+import os
 import sys
 import time
 from pathlib import Path
@@ -61,7 +64,8 @@ def main(task: str, out: Path, seeds: list[int]) -> None:
     for seed in seeds:
         env = gym.make(task)
         general = preset("general")
-        config = general_as_of(22)
+        overrides = json.loads(os.environ.get("OVERRIDES", "{}"))
+        config = dataclasses.replace(general_as_of(22), **overrides)
         agent = tree_agent_class(config)(env.observation_space, env.action_space, general.make_exploration(), seed, config)
         start = time.process_time()
         agent.learn(env, 1000, reset_seed=seed)
@@ -69,7 +73,7 @@ def main(task: str, out: Path, seeds: list[int]) -> None:
         for k in KS:
             returns = episodes(agent, env, seed, k)
             with out.open("a") as f:
-                f.write(json.dumps({"task": task, "seed": seed, "k": k, "greedy": round(float(np.mean(returns)), 2),
+                f.write(json.dumps({"task": task, "seed": seed, "k": k, "overrides": overrides, "greedy": round(float(np.mean(returns)), 2),
                                     "greedy_all": [round(r) for r in returns], "leaves": agent.n_leaves, "cpu": round(cpu, 1)}) + "\n")
 
 
