@@ -18,6 +18,7 @@ import numpy as np
 
 from agent import adapt_env, general_as_of, preset
 from agent.tree_ensemble import tree_agent_class
+from supported_greedy import greedy_returns
 
 
 def greedy_action_inherited(agent, obs, first_learned: int) -> int:
@@ -41,14 +42,6 @@ if __name__ == "__main__":
         first_learned = agent.partition.n_ids  # ids from here on are made while learning
         agent.learn(env, 600 if taxi else 1000, reset_seed=seed)
         starts = [10_000 + i for i in range(10)] if taxi else [1_000_000 + 1000 * seed + i for i in range(20)]
-        returns = []
-        for reset_seed in starts:
-            obs, _ = env.reset(seed=reset_seed)
-            total, done = 0.0, False
-            while not done:
-                obs, r, term, trunc, _ = env.step(greedy_action_inherited(agent, obs, first_learned))
-                total += float(r)
-                done = term or trunc
-            returns.append(total)
+        returns = greedy_returns(agent, env, 0, starts, lambda obs: greedy_action_inherited(agent, obs, first_learned))
         with out.open("a") as f:
             f.write(json.dumps({"task": task, "seed": seed, "rule": "k2-inherited", "greedy": float(np.mean(returns)), "returns": [round(r) for r in returns], "first_learned": first_learned}) + "\n")

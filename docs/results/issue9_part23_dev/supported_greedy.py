@@ -41,14 +41,16 @@ def greedy_action(agent, obs, k: int) -> int:
     return max(actions, key=row.__getitem__)
 
 
-def greedy_returns(agent, env, k: int, reset_seeds) -> list[float]:
-    """Returns of greedy episodes under k, one reset with each seed."""
+def greedy_returns(agent, env, k: int, reset_seeds, choose=None) -> list[float]:
+    """Returns of greedy episodes under k (or ``choose(obs)``), one reset with each seed."""
+    if choose is None:
+        choose = lambda obs: greedy_action(agent, obs, k)  # noqa: E731
     out = []
     for reset_seed in reset_seeds:
         obs, _ = env.reset(seed=reset_seed)
         total, done = 0.0, False
         while not done:
-            obs, reward, terminated, truncated, _ = env.step(greedy_action(agent, obs, k))
+            obs, reward, terminated, truncated, _ = env.step(choose(obs))
             total += float(reward)
             done = terminated or truncated
         out.append(total)
