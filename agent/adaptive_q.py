@@ -43,6 +43,7 @@ from numpy.typing import NDArray
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
 from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
+from agent.smdp import greedy_among
 from agent.spaces import action_count, observation_bounds, squash
 
 
@@ -292,7 +293,7 @@ class AdaptiveQAgent:
         ``deterministic=False``, which breaks ties at random)."""
         values, _ = self._values(self._input(obs))
         if deterministic:
-            return max(range(self.n_actions), key=values.__getitem__)
+            return greedy_among(values)
         return self._greedy(values)
 
     def params(self) -> dict[str, Any]:

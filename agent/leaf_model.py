@@ -85,6 +85,11 @@ class LeafModel:
         records = self._records.get(leaf * self.n_actions + action)
         return 0 if records is None else len(records)
 
+    def counts(self, leaf: int) -> list[int]:
+        """:meth:`count` of every action of ``leaf``."""
+        get, base = self._records.get, leaf * self.n_actions
+        return [len(r) if (r := get(base + a)) is not None else 0 for a in range(self.n_actions)]
+
     def add(
         self,
         leaf: int,

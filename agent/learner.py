@@ -606,12 +606,7 @@ class SMDPAgent:
     def support(self, leaf: int) -> list[int]:
         """Epochs of each action stored in the model for ``leaf`` (at least the counts a
         policy-only file was saved with); zeros without a model."""
-        model = self.model
-        counts = (
-            [0] * self.n_actions
-            if model is None
-            else [model.count(leaf, a) for a in range(self.n_actions)]
-        )
+        counts = [0] * self.n_actions if self.model is None else self.model.counts(leaf)
         saved = self.saved_support
         if saved is not None and leaf < len(saved):
             counts = [max(c, s) for c, s in zip(counts, saved[leaf], strict=True)]
@@ -624,8 +619,12 @@ class SMDPAgent:
         k = self.config.greedy_min_epochs
         if k == 0:
             return None
-        counts = [agent.support(leaf) for agent, leaf in zip(agents, leaves, strict=True)]
-        allowed = [a for a in range(self.n_actions) if min(c[a] for c in counts) >= k]
+        if len(agents) == 1:
+            counts = agents[0].support(leaves[0])
+        else:  # an ensemble: the fewest epochs over the trees
+            each = [agent.support(leaf) for agent, leaf in zip(agents, leaves, strict=True)]
+            counts = [min(column) for column in zip(*each, strict=True)]
+        allowed = [a for a, c in enumerate(counts) if c >= k]
         return allowed or None
 
     def leaf_of(self, obs: Any) -> int:

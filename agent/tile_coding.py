@@ -37,6 +37,7 @@ from numpy.typing import NDArray
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
 from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
+from agent.smdp import greedy_among
 from agent.spaces import action_count, observation_bounds, squash
 
 logger = logging.getLogger(__name__)
@@ -265,7 +266,7 @@ class TileCodingAgent:
         """The greedy action (lowest index among ties); ``deterministic=False``: epsilon-greedy."""
         values = self.q_values(obs)
         if deterministic:
-            return max(range(self.n_actions), key=values.__getitem__)
+            return greedy_among(values)
         return self._choose(values)
 
     def params(self) -> dict[str, Any]:
