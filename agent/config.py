@@ -263,6 +263,15 @@ class TreeConfig:
     came from such choices (docs/paper-notes.md, "A greedy choice among supported actions").
     It is the support constraint of batch-constrained Q-learning (Fujimoto, Meger and Precup
     2019) read on the tree's stored epochs. 0: off (the paper). At most ``model_window``."""
+    greedy_cell_epochs: int | None = None
+    """With ``greedy_min_epochs`` (beyond the paper): the count asked instead in a leaf that
+    holds a single input, one integer per dimension of an integer-typed box (a table's cell,
+    ``table_cells``). There every stored epoch starts from the same state, so one epoch is a
+    sample of that state and action; in a leaf over a region it is a sample of one point of
+    it, and an action whose value rests on one lucky point can lead the leaf. On a
+    deterministic table (Taxi) two epochs asked in every cell left a good action out where it
+    had one, and the taxi looped (docs/paper-notes.md, "A greedy choice among supported
+    actions"). None: ``greedy_min_epochs`` in every leaf. At most ``model_window``."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -614,6 +623,19 @@ class TreeConfig:
             raise ValueError(f"TreeConfig.greedy_min_epochs must be an int >= 0, got {k!r}")
         if k > 0:
             self._check_stored_epochs("greedy_min_epochs", k, "it counts the model's stored epochs")
+        cell = self.greedy_cell_epochs
+        if cell is None:
+            return
+        if isinstance(cell, bool) or not isinstance(cell, int) or cell < 0:
+            raise ValueError(
+                f"TreeConfig.greedy_cell_epochs must be an int >= 0 or None, got {cell!r}"
+            )
+        if k == 0:
+            raise ValueError(
+                f"TreeConfig.greedy_cell_epochs = {cell!r} needs greedy_min_epochs > 0 (it "
+                "replaces that count in single-input leaves), got greedy_min_epochs = 0"
+            )
+        self._check_stored_epochs("greedy_cell_epochs", cell, "it counts the model's stored epochs")
 
     def _check_stored_epochs(self, name: str, count: int, why: str) -> None:
         """A count of the model's stored epochs of one (leaf, action): it needs the model and

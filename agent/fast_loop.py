@@ -121,6 +121,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "optimistic_untried": bool,
     # changes only predict's greedy choice, never a training step; needs the model
     "greedy_min_epochs": int,
+    "greedy_cell_epochs": (int, type(None)),
     # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)
     "table_cells": (int, type(None)),
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off

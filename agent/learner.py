@@ -612,6 +612,18 @@ class SMDPAgent:
             counts = [max(c, s) for c, s in zip(counts, saved[leaf], strict=True)]
         return counts
 
+    def holds_one_input(self, leaf: int) -> bool:
+        """Whether ``leaf`` holds a single input: the inputs are integers
+        (:func:`agent.spaces.integer_inputs`) and its box ``[low, high)`` holds one integer in
+        every dimension (``TreeConfig.greedy_cell_epochs``)."""
+        if not self.integer_inputs:
+            return False
+        low, high = self.partition.leaf_bounds(leaf)
+        return all(
+            math.isfinite(lo) and math.isfinite(hi) and math.ceil(hi) - math.ceil(lo) == 1
+            for lo, hi in zip(low, high, strict=True)
+        )
+
     def _supported(self, agents: Sequence[SMDPAgent], leaves: Sequence[int]) -> list[int] | None:
         """``TreeConfig.greedy_min_epochs``: the actions with at least that many stored epochs
         in every tree's leaf (``agents[i]`` holding ``leaves[i]``); None when the option is off
@@ -619,6 +631,13 @@ class SMDPAgent:
         k = self.config.greedy_min_epochs
         if k == 0:
             return None
+        cell = self.config.greedy_cell_epochs
+        if cell is not None and all(
+            agent.holds_one_input(leaf) for agent, leaf in zip(agents, leaves, strict=True)
+        ):
+            k = cell  # TreeConfig.greedy_cell_epochs: every tree's leaf is one input
+            if k == 0:
+                return None
         if len(agents) == 1:
             counts = agents[0].support(leaves[0])
         else:  # an ensemble: the fewest epochs over the trees

@@ -92,6 +92,9 @@ def _cases() -> list[tuple[str, list[str], list[str]]]:
                 "greedy_min_epochs=1.5",
                 "greedy_min_epochs=true",
                 "greedy_min_epochs=2",  # needs planning = 'sweep'
+                "greedy_cell_epochs=-1",
+                "greedy_cell_epochs=1",  # needs greedy_min_epochs > 0 and planning = 'sweep'
+                "greedy_cell_epochs='1'",
             ],
         ),
         ("--maze", train, [*TEXT, "nosuch", "/etc/passwd", "missing.toml", "{afile}"]),
