@@ -106,7 +106,8 @@ GENERAL = Preset(
     "held exploration until 100 terminals, model-driven splits, novel ends until 10 terminals "
     "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs, optimism for "
     "untried actions, a presplit of at most the first 4 of more than 8 inputs, gamma 0.9995 once "
-    "every terminal is measured a failure, a greedy choice among actions with a stored epoch",
+    "every terminal is measured a failure, a greedy choice among actions with two stored epochs "
+    "(one in a table's cell)",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -131,7 +132,8 @@ GENERAL = Preset(
         presplit_beyond_dimensions=4,
         failure_gamma=0.9995,
         failure_measure="every",
-        greedy_min_epochs=1,
+        greedy_min_epochs=2,
+        greedy_cell_epochs=1,
     ),
     "adaptive+tabu",
 )
@@ -150,6 +152,7 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     19: {"failure_gamma": None},
     20: {"failure_measure": "mean"},
     23: {"greedy_min_epochs": 0},
+    24: {"greedy_min_epochs": 1, "greedy_cell_epochs": None},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none).
@@ -158,8 +161,9 @@ and presplit into 512 to 65,536 leaves from 9 to 16. Part 18 changed none; part 
 runs whose terminals are measured failures (CartPole's fall, never a goal); part 20 keeps the
 latch shut where any terminal paid more than going on (FrozenLake's goal). Part 21's policy
 splits were adopted on 20 dev seeds and withdrawn on 20 more (docs/paper-notes.md, "Policy
-splits"), so it changed none. Part 22 changed none; part 23 changes only the greedy choice of
-``predict``, never a training step."""
+splits"), so it changed none. Part 22 changed none; parts 23 and 24 change only the greedy
+choice of ``predict``, never a training step (for part 24's, part 23's value of
+``greedy_min_epochs`` is 1)."""
 
 
 def general_as_of(part: int) -> TreeConfig:

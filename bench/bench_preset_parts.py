@@ -54,6 +54,9 @@ PARTS: dict[int, str] = {
     "stays shut on all three tasks, so their runs should be the same",
     23: "greedy_min_epochs 1: only predict's greedy choice reads the model's counts; no training "
     "step changes, so every run should be the same (bench/bench_greedy_choice.py times predict)",
+    24: "greedy_min_epochs 2, greedy_cell_epochs 1: predict's greedy choice asks two stored "
+    "epochs (one in a single-input leaf); no training step changes, so every run should be the "
+    "same",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

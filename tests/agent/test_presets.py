@@ -50,6 +50,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"failure_gamma"}  # issue 9, part 19
     others |= {"failure_measure"}  # issue 9, part 20
     others |= {"greedy_min_epochs"}  # issue 9, part 23
+    others |= {"greedy_cell_epochs"}  # issue 9, part 24
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -67,7 +68,8 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.failure_gamma == 0.9995  # part 19 ("A discount gated on failure")
     assert general.failure_measure == "every"  # part 20 (the same section)
     assert general.policy_splits is False  # part 21: withdrawn on more dev seeds
-    assert general.greedy_min_epochs == 1  # part 23 ("A greedy choice among supported actions")
+    # parts 23 and 24 ("A greedy choice among supported actions")
+    assert (general.greedy_min_epochs, general.greedy_cell_epochs) == (2, 1)
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -223,6 +225,8 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
+    assert general_as_of(24) == now
+    now = dataclasses.replace(now, greedy_min_epochs=1, greedy_cell_epochs=None)
     assert general_as_of(23) == now
     now = dataclasses.replace(now, greedy_min_epochs=0)
     assert general_as_of(22) == general_as_of(21) == general_as_of(20) == now
@@ -264,19 +268,32 @@ def test_general_as_of_takes_the_value_before_the_first_later_change(
         assert general_as_of(10).gamma == general_as_of(7).gamma == 0.99
 
 
+def _spelt_out(arm: dict[str, object]) -> TreeConfig:
+    """The config of an arm written field by field (no preset, the paper's agent)."""
+    assert set(arm) == {"name", "exploration", "config"}
+    assert arm["exploration"] == "adaptive+tabu"
+    return TreeConfig(**arm["config"])  # type: ignore[arg-type]
+
+
 @pytest.mark.parametrize(("name", "seed"), [("classic", 23101), ("mountaincar", 11101)])
 def test_part23_comparisons_set_the_preset_against_part_22s(name: str, seed: int) -> None:
-    """Part 23 changes only the greedy choice: ``general`` is the preset by name, and
-    ``general-part22`` the preset without the option, which is part 22's preset."""
+    """Part 23 changes only the greedy choice: ``general`` is the preset by name (today's,
+    part 24's since), and ``general-part22`` is part 22's preset spelt out field by field."""
     data = tomllib.loads((EXPERIMENT_DIR / f"greedy_support_{name}.toml").read_text())
     by_name = {s["name"]: s for s in data["strategy"]}
     assert by_name["general"] == {"name": "general", "preset": "general"}
-    old = by_name["general-part22"]
-    assert old == {
-        "name": "general-part22",
-        "preset": "general",
-        "config": {"greedy_min_epochs": 0},
-    }
-    assert dataclasses.replace(preset("general").config, greedy_min_epochs=0) == general_as_of(22)
+    assert _spelt_out(by_name["general-part22"]) == general_as_of(22)
     assert data["experiment"]["baseline"] == "general-part22"
+    assert data["experiment"]["seed"] == seed
+
+
+@pytest.mark.parametrize(("name", "seed"), [("classic", 23101), ("mountaincar", 11101)])
+def test_part24_comparisons_set_the_preset_against_part_23s(name: str, seed: int) -> None:
+    """Part 24 changes only the greedy choice's counts: ``general`` is the preset by name, and
+    ``general-part23`` part 23's preset spelt out, on the seed sets part 23 stored."""
+    data = tomllib.loads((EXPERIMENT_DIR / f"greedy_two_epochs_{name}.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    assert _spelt_out(by_name["general-part23"]) == general_as_of(23)
+    assert data["experiment"]["baseline"] == "general-part23"
     assert data["experiment"]["seed"] == seed

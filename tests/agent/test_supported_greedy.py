@@ -85,7 +85,7 @@ def test_training_is_the_same_run(tmp_path: Path) -> None:
     general = preset("general")
     runs = []
     for k in (0, 2):
-        config = dataclasses.replace(general.config, greedy_min_epochs=k)
+        config = dataclasses.replace(general.config, greedy_min_epochs=k, greedy_cell_epochs=None)
         agent = TreeEnsembleAgent(
             env.observation_space, env.action_space, general.make_exploration(), 1, config
         )
@@ -97,7 +97,7 @@ def test_training_is_the_same_run(tmp_path: Path) -> None:
 def _trained(k: int) -> TreeEnsembleAgent:
     env = gym.make("MountainCar-v0")
     general = preset("general")
-    config = dataclasses.replace(general.config, greedy_min_epochs=k)
+    config = dataclasses.replace(general.config, greedy_min_epochs=k, greedy_cell_epochs=None)
     agent = TreeEnsembleAgent(
         env.observation_space, env.action_space, general.make_exploration(), 3, config
     )
