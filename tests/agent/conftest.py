@@ -104,3 +104,20 @@ def load_example() -> Callable[[str], ModuleType]:
         return module
 
     return load
+
+
+def _greedy_return(env: gym.Env, agent: Any, seed: int) -> float:
+    obs, _ = env.reset(seed=seed)
+    total, done = 0.0, False
+    while not done:
+        obs, reward, terminated, truncated, _ = env.step(agent.predict(obs))
+        total += float(reward)
+        done = terminated or truncated
+    return total
+
+
+@pytest.fixture
+def greedy_return() -> Callable[[gym.Env, Any, int], float]:
+    """``greedy_return(env, agent, seed)``: the return of one episode of ``agent.predict``
+    from ``env.reset(seed=seed)``."""
+    return _greedy_return

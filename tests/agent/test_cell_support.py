@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 import gymnasium as gym
@@ -111,17 +112,9 @@ def test_a_policy_only_file_keeps_the_cell_rule(tmp_path: Path) -> None:
     assert loaded.predict(np.array([1])) == 1
 
 
-def _greedy_return(env: gym.Env, agent: TreeAgent, seed: int) -> float:
-    obs, _ = env.reset(seed=seed)
-    total, done = 0.0, False
-    while not done:
-        obs, reward, terminated, truncated, _ = env.step(agent.predict(obs))
-        total += float(reward)
-        done = terminated or truncated
-    return total
-
-
-def test_taxi_delivers_from_every_start_with_one_epoch_asked_in_its_cells() -> None:
+def test_taxi_delivers_from_every_start_with_one_epoch_asked_in_its_cells(
+    greedy_return: Callable,
+) -> None:
     """The dev case the option was made for (Taxi seed 0, 600 episodes; part 23's Taxi rows):
     two epochs asked in every leaf leave out a good action of one cell that had one, and the
     greedy taxi loops from one start of 10; the preset's one epoch in a cell delivers from all.
@@ -136,7 +129,7 @@ def test_taxi_delivers_from_every_start_with_one_epoch_asked_in_its_cells() -> N
     returns = {}
     for cell in (1, None):
         agent.config = dataclasses.replace(config, greedy_cell_epochs=cell)
-        returns[cell] = [_greedy_return(env, agent, 10_000 + i) for i in range(10)]
+        returns[cell] = [greedy_return(env, agent, 10_000 + i) for i in range(10)]
     assert min(returns[1]) > 0.0, returns
     assert min(returns[None]) == -200.0, returns  # the 200-step limit, never delivered
 

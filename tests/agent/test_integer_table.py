@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 import gymnasium as gym
@@ -153,17 +154,7 @@ def test_the_fast_loop_refuses_integer_inputs() -> None:
     assert ineligible_reason(agent, None) == "integer inputs (an integer-typed observation box)"
 
 
-def greedy_return(env: gym.Env, agent: TreeAgent, seed: int) -> float:
-    obs, _ = env.reset(seed=seed)
-    total, done = 0.0, False
-    while not done:
-        obs, reward, terminated, truncated, _ = env.step(agent.predict(obs))
-        total += float(reward)
-        done = terminated or truncated
-    return total
-
-
-def test_taxi_is_learnt_as_a_table_and_not_without_one() -> None:
+def test_taxi_is_learnt_as_a_table_and_not_without_one(greedy_return: Callable) -> None:
     """Taxi's 500 encoded states through adapt_env (one integer input), 600 episodes of the
     general preset: with the table the greedy taxi delivers from every one of 10 starts (the
     optimum averages about 8; a start's return is 20 minus its steps), without it (part 14's

@@ -10,27 +10,21 @@ suite's test split (seed 14102) by geometric-mean greedy steps over the optimum.
 
 from __future__ import annotations
 
-import csv
-import json
+import importlib.util
 import math
 from pathlib import Path
 
 RESULTS = Path(__file__).resolve().parent.parent
+_SPEC = importlib.util.spec_from_file_location(
+    "part23_pair", RESULTS / "issue9_part23_heldout_rows" / "pair.py"
+)
+assert _SPEC is not None and _SPEC.loader is not None
+_PART23 = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(_PART23)
+runs = _PART23.runs  # run seed -> (training SHA-256, mean greedy return)
+maze_runs = _PART23.maze_runs  # run seed -> (training SHA-256, greedy / optimum, capped, episodes)
 TARGET = {"MountainCar-v0": -110.0, "Acrobot-v1": -100.0, "CartPole-v1": 475.0}
 MOUNTAINCAR_SETS = (11101, 11104, 12101, 13101, 19101, 21101, 21102, 21103, 22101, 22102)
-
-
-def runs(folder: Path, task: str, strategy: str) -> dict[int, tuple[str, float]]:
-    """Run seed -> (training CSV's SHA-256, mean greedy return) of one strategy's runs."""
-    out = {}
-    for sidecar in sorted((folder / "runs" / task).glob(f"{strategy}__*.json")):
-        meta = json.loads(sidecar.read_text())
-        if meta["strategy"] != strategy:
-            continue
-        with sidecar.with_suffix(".eval.csv").open() as f:
-            returns = [float(row["return"]) for row in csv.DictReader(f)]
-        out[int(meta["seed"])] = (meta["data_sha256"], sum(returns) / len(returns))
-    return out
 
 
 def compare(label: str, task: str, new: dict, old: dict) -> tuple[list[float], list[float]]:
@@ -50,21 +44,6 @@ def compare(label: str, task: str, new: dict, old: dict) -> tuple[list[float], l
     print("   part 23:", [round(v, 1) for v in olds])
     print("   part 24:", [round(v, 1) for v in news])
     return olds, news
-
-
-def maze_runs(folder: Path, layout: str) -> dict[int, tuple[str, float, int, int]]:
-    """Run seed -> (training SHA-256, greedy steps / optimum, greedy episodes at the cap,
-    greedy episodes) of the "general" runs on one layout."""
-    out = {}
-    for sidecar in sorted((folder / "runs" / layout).glob("general__*.json")):
-        meta = json.loads(sidecar.read_text())
-        with sidecar.with_suffix(".eval.csv").open() as f:
-            rows = list(csv.DictReader(f))
-        steps = [int(row["steps"]) for row in rows]
-        capped = sum(row["truncated"] == "1" for row in rows)
-        ratio = sum(steps) / len(steps) / float(meta["optimal_steps"])
-        out[int(meta["seed"])] = (meta["data_sha256"], ratio, capped, len(rows))
-    return out
 
 
 def mazes() -> None:
