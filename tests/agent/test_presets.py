@@ -276,24 +276,15 @@ def _spelt_out(arm: dict[str, object]) -> TreeConfig:
 
 
 @pytest.mark.parametrize(("name", "seed"), [("classic", 23101), ("mountaincar", 11101)])
-def test_part23_comparisons_set_the_preset_against_part_22s(name: str, seed: int) -> None:
-    """Part 23 changes only the greedy choice: ``general`` is the preset by name (today's,
-    part 24's since), and ``general-part22`` is part 22's preset spelt out field by field."""
-    data = tomllib.loads((EXPERIMENT_DIR / f"greedy_support_{name}.toml").read_text())
+@pytest.mark.parametrize(("prefix", "part"), [("greedy_support", 22), ("greedy_two_epochs", 23)])
+def test_greedy_choice_comparisons_set_the_preset_against_the_part_before(
+    prefix: str, part: int, name: str, seed: int
+) -> None:
+    """Parts 23 and 24 change only the greedy choice: ``general`` is the preset by name
+    (today's), and ``general-partN`` the preset of the part before, spelt out field by field."""
+    data = tomllib.loads((EXPERIMENT_DIR / f"{prefix}_{name}.toml").read_text())
     by_name = {s["name"]: s for s in data["strategy"]}
     assert by_name["general"] == {"name": "general", "preset": "general"}
-    assert _spelt_out(by_name["general-part22"]) == general_as_of(22)
-    assert data["experiment"]["baseline"] == "general-part22"
-    assert data["experiment"]["seed"] == seed
-
-
-@pytest.mark.parametrize(("name", "seed"), [("classic", 23101), ("mountaincar", 11101)])
-def test_part24_comparisons_set_the_preset_against_part_23s(name: str, seed: int) -> None:
-    """Part 24 changes only the greedy choice's counts: ``general`` is the preset by name, and
-    ``general-part23`` part 23's preset spelt out, on the seed sets part 23 stored."""
-    data = tomllib.loads((EXPERIMENT_DIR / f"greedy_two_epochs_{name}.toml").read_text())
-    by_name = {s["name"]: s for s in data["strategy"]}
-    assert by_name["general"] == {"name": "general", "preset": "general"}
-    assert _spelt_out(by_name["general-part23"]) == general_as_of(23)
-    assert data["experiment"]["baseline"] == "general-part23"
+    assert _spelt_out(by_name[f"general-part{part}"]) == general_as_of(part)
+    assert data["experiment"]["baseline"] == f"general-part{part}"
     assert data["experiment"]["seed"] == seed

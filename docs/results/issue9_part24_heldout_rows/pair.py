@@ -2,8 +2,10 @@
 ``greedy_cell_epochs`` 1) paired with the stored run of part 23's preset (``greedy_min_epochs``
 1) with the same run seed. Training must be the same run (the training CSVs' SHA-256 in the
 sidecars equal; a pair that differs stops the script), and only the greedy evaluation differs.
-Prints, per seed set and task, runs at the target, means and per-run returns; then the maze
-suite's test split (seed 14102) by geometric-mean greedy steps over the optimum.
+Prints, per seed set and task, runs at the target, means and per-run returns; the fresh set
+24101, whose folder holds both arms (and whose MountainCar runs the MountainCar-only file made
+again, which must be the same runs); then the maze suite's test split (seed 14102) by
+geometric-mean greedy steps over the optimum.
 
     python pair.py            (from anywhere; reads ../issue9_part2[34]_heldout_*)
 """
@@ -96,6 +98,20 @@ def main() -> None:
             print(f"23101 {task}: not finished")
             continue
         add(task, compare("23101", task, new, runs(fresh_old, task, "general")))
+    fresh = RESULTS / "issue9_part24_heldout_classic_seed24101"  # both arms, never used before
+    for task in TARGET:
+        new = runs(fresh, task, "general") if fresh.exists() else {}
+        old = runs(fresh, task, "general-part23") if fresh.exists() else {}
+        if min(len(new), len(old)) < 10:
+            print(f"24101 {task}: not finished")
+            continue
+        add(task, compare("24101", task, new, old))
+    alone = RESULTS / "issue9_part24_heldout_mountaincar_seed24101"  # the same seed, MountainCar's file
+    if fresh.exists() and alone.exists():
+        for name in ("general", "general-part23"):
+            here, there = runs(alone, "MountainCar-v0", name), runs(fresh, "MountainCar-v0", name)
+            same = here == there and len(here) == 10
+            print(f"24101 MountainCar-v0 {name}: the two files' runs are {'the same' if same else 'NOT the same'}")
     for task, (olds, news) in totals.items():
         target, n = TARGET[task], len(olds)
         diffs = [b - a for a, b in zip(olds, news)]
