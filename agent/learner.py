@@ -619,10 +619,10 @@ class SMDPAgent:
         if not self.integer_inputs:
             return False
         low, high = self.partition.leaf_bounds(leaf)
-        return all(
-            math.isfinite(lo) and math.isfinite(hi) and math.ceil(hi) - math.ceil(lo) == 1
-            for lo, hi in zip(low, high, strict=True)
-        )
+        for lo, hi in zip(low, high, strict=True):
+            if not -math.inf < lo < hi < math.inf or math.ceil(hi) - math.ceil(lo) != 1:
+                return False
+        return True
 
     def _supported(self, agents: Sequence[SMDPAgent], leaves: Sequence[int]) -> list[int] | None:
         """``TreeConfig.greedy_min_epochs``: the actions with at least that many stored epochs
@@ -632,8 +632,10 @@ class SMDPAgent:
         if k == 0:
             return None
         cell = self.config.greedy_cell_epochs
-        if cell is not None and all(
-            agent.holds_one_input(leaf) for agent, leaf in zip(agents, leaves, strict=True)
+        if (
+            cell is not None
+            and self.integer_inputs  # float inputs never hold one input: no per-tree check
+            and all(agent.holds_one_input(leaf) for agent, leaf in zip(agents, leaves, strict=True))
         ):
             k = cell  # TreeConfig.greedy_cell_epochs: every tree's leaf is one input
             if k == 0:
