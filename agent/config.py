@@ -272,6 +272,16 @@ class TreeConfig:
     deterministic table (Taxi) two epochs asked in every cell left a good action out where it
     had one, and the taxi looped (docs/paper-notes.md, "A greedy choice among supported
     actions"). None: ``greedy_min_epochs`` in every leaf. At most ``model_window``."""
+    greedy_smoothing: float = 0.0
+    """A greedy choice over a smoothed Q-bar (beyond the paper; off in every preset): ``predict``
+    ranks the actions by the mean Q-bar row over the leaves of up to 2d + 1 points, the state
+    and the state moved by +-h times its leaf's width along each dimension the leaf bounds (h is
+    this value). A leaf gives one value to every state in it, so near a face where the best
+    action changes the state's own row is the row of the wrong side as often as not; the
+    neighbours' rows say which way it changes. The allowed actions stay those of
+    ``greedy_min_epochs``, a leaf that holds a single input (a table's cell) is not smoothed,
+    and training is unchanged. ``leaf_info`` reports the leaf's own greedy action. 0: off. At
+    most 1 (a neighbour one leaf width away)."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -486,6 +496,7 @@ class TreeConfig:
             )
         self._check_novelty()
         self._check_greedy_min_epochs()
+        self._check_greedy_smoothing()
         _check_choice("failure_measure", self.failure_measure, ("mean", "every"))
         if self.failure_measure != "mean" and self.failure_gamma is None:
             raise ValueError(
@@ -616,6 +627,16 @@ class TreeConfig:
                 f"TreeConfig.novelty_cells = {cells!r} needs planning = 'sweep' (the model "
                 f"stores the novel ends), got planning = {self.planning!r}"
             )
+
+    def _check_greedy_smoothing(self) -> None:
+        h = self.greedy_smoothing
+        if (
+            isinstance(h, bool)
+            or not isinstance(h, int | float)
+            or not math.isfinite(h)
+            or not 0.0 <= h <= 1.0
+        ):
+            raise ValueError(f"TreeConfig.greedy_smoothing must be a number in [0, 1], got {h!r}")
 
     def _check_greedy_min_epochs(self) -> None:
         k = self.greedy_min_epochs

@@ -122,6 +122,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     # changes only predict's greedy choice, never a training step; needs the model
     "greedy_min_epochs": int,
     "greedy_cell_epochs": (int, type(None)),
+    "greedy_smoothing": (float, int),
     # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)
     "table_cells": (int, type(None)),
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off

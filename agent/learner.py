@@ -600,8 +600,36 @@ class SMDPAgent:
         leaf = self.partition.leaf_of(x)
         row = self.q[leaf]
         if deterministic:
-            return greedy_among(row, self._supported([self], [leaf]))
+            allowed = self._supported([self], [leaf])
+            if self.config.greedy_smoothing > 0.0:
+                row = self._smoothed_row(x, leaf, row, lambda p: self.q[self.partition.leaf_of(p)])
+            return greedy_among(row, allowed)
         return self.exploration.select(leaf, row, self.uniform)
+
+    def _smoothed_row(
+        self,
+        x: list[float],
+        leaf: int,
+        row: list[float],
+        row_at: Callable[[list[float]], list[float]],
+    ) -> list[float]:
+        """``TreeConfig.greedy_smoothing``: the mean of ``row_at(p)`` over ``x`` and ``x``
+        moved by +-h times the width of ``leaf`` (this tree's leaf of ``x``) along each
+        dimension it bounds; ``row`` itself where the leaf holds a single input."""
+        if self.holds_one_input(leaf):
+            return row
+        h = self.config.greedy_smoothing
+        low, high = self.partition.leaf_bounds(leaf)
+        rows = [row]
+        for j, (lo, hi) in enumerate(zip(low, high, strict=True)):
+            if not -math.inf < lo < hi < math.inf:
+                continue  # an unbounded edge: no width to move by
+            for step in (-h * (hi - lo), h * (hi - lo)):
+                moved = list(x)
+                moved[j] += step
+                rows.append(row_at(moved))
+        n = len(rows)
+        return [sum(column) / n for column in zip(*rows, strict=True)]
 
     def support(self, leaf: int) -> list[int]:
         """Epochs of each action stored in the model for ``leaf`` (at least the counts a

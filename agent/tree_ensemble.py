@@ -198,7 +198,12 @@ class TreeEnsembleAgent(TreeAgent):
         leaves = self._leaves(x)
         row = self.mean_row(leaves)
         if deterministic:
-            return greedy_among(row, self._supported(self.members, leaves))
+            allowed = self._supported(self.members, leaves)
+            if self.config.greedy_smoothing > 0.0:  # moved by tree 0's leaf, every tree's row
+                row = self._smoothed_row(
+                    x, leaves[0], row, lambda p: self.mean_row(self._leaves(p))
+                )
+            return greedy_among(row, allowed)
         return self.exploration.select(leaves[0], row, self.uniform)
 
     @property

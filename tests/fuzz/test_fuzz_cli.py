@@ -95,6 +95,9 @@ def _cases() -> list[tuple[str, list[str], list[str]]]:
                 "greedy_cell_epochs=-1",
                 "greedy_cell_epochs=1",  # needs greedy_min_epochs > 0 and planning = 'sweep'
                 "greedy_cell_epochs='1'",
+                "greedy_smoothing=-1",
+                "greedy_smoothing=nan",
+                "greedy_smoothing=2",
             ],
         ),
         ("--maze", train, [*TEXT, "nosuch", "/etc/passwd", "missing.toml", "{afile}"]),
