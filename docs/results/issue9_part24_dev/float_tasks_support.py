@@ -24,18 +24,24 @@ from supported_greedy import KS, episodes  # noqa: E402
 from agent import adapt_env, general_as_of, preset  # noqa: E402
 from agent.tree_ensemble import tree_agent_class  # noqa: E402
 
+def train(task: str, seed: int):
+    """One training run of part 22's preset (part 24's training) through ``agent.adapt_env``:
+    1,000 episodes, first reset seed = agent seed. Returns (env, agent, CPU seconds)."""
+    env = adapt_env(gym.make(task))
+    config = general_as_of(22)
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, preset("general").make_exploration(), seed, config
+    )
+    start = time.process_time()
+    agent.learn(env, 1000, reset_seed=seed)
+    return env, agent, time.process_time() - start
+
+
 if __name__ == "__main__":
     warnings.simplefilter("ignore")
     task, out = sys.argv[1], Path(sys.argv[2])
     for seed in map(int, sys.argv[3:]):
-        env = adapt_env(gym.make(task))
-        config = general_as_of(22)
-        agent = tree_agent_class(config)(
-            env.observation_space, env.action_space, preset("general").make_exploration(), seed, config
-        )
-        start = time.process_time()
-        agent.learn(env, 1000, reset_seed=seed)
-        cpu = time.process_time() - start
+        env, agent, cpu = train(task, seed)
         for k in KS:
             returns = episodes(agent, env, seed, k)
             with out.open("a") as f:

@@ -13,18 +13,16 @@ from __future__ import annotations
 import json
 import math
 import sys
-import time
 import warnings
 from pathlib import Path
 
-import gymnasium as gym
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "issue9_part23_dev"))
 from supported_greedy import greedy_returns  # noqa: E402
 
-from agent import adapt_env, general_as_of, preset  # noqa: E402
-from agent.tree_ensemble import tree_agent_class  # noqa: E402
+from float_tasks_support import train  # noqa: E402
+
 
 HS = (0.0, 0.25, 0.5, 1.0)
 
@@ -54,14 +52,7 @@ if __name__ == "__main__":
     warnings.simplefilter("ignore")
     task, out = sys.argv[1], Path(sys.argv[2])
     for seed in map(int, sys.argv[3:]):
-        env = adapt_env(gym.make(task))
-        config = general_as_of(22)
-        agent = tree_agent_class(config)(
-            env.observation_space, env.action_space, preset("general").make_exploration(), seed, config
-        )
-        start = time.process_time()
-        agent.learn(env, 1000, reset_seed=seed)
-        cpu = time.process_time() - start
+        env, agent, cpu = train(task, seed)
         starts = [1_000_000 + 1000 * seed + i for i in range(20)]
         for h in HS:
             returns = greedy_returns(agent, env, 0, starts, lambda obs, h=h: smoothed_action(agent, obs, h))
