@@ -273,7 +273,7 @@ class TreeConfig:
     had one, and the taxi looped (docs/paper-notes.md, "A greedy choice among supported
     actions"). None: ``greedy_min_epochs`` in every leaf. At most ``model_window``."""
     greedy_smoothing: float = 0.0
-    """A greedy choice over a smoothed Q-bar (beyond the paper; off in every preset): ``predict``
+    """A greedy choice over a smoothed Q-bar (beyond the paper): ``predict``
     ranks the actions by the mean Q-bar row over the leaves of up to 2d + 1 points, the state
     and the state moved by +-h times its leaf's width along each dimension the leaf bounds (h is
     this value). A leaf gives one value to every state in it, so near a face where the best
@@ -282,6 +282,22 @@ class TreeConfig:
     ``greedy_min_epochs``, a leaf that holds a single input (a table's cell) is not smoothed,
     and training is unchanged. ``leaf_info`` reports the leaf's own greedy action. 0: off. At
     most 1 (a neighbour one leaf width away)."""
+    greedy_smoothing_links: bool = False
+    """With ``greedy_smoothing`` (beyond the paper): a moved point's row counts only where it
+    lies in another leaf that the model links to the state's (an epoch stored from one of the
+    two leaves ended in the other: the agent has moved between them, so no wall lies between
+    them in a maze). A moved point in the state's own leaf, or in a leaf the agent never moved
+    to or from, is left out. In an ensemble, every tree whose leaf the point changes must link
+    the two. Needs ``planning = "sweep"``. False: every moved point counts (part 24's probe)."""
+    greedy_tie_errors: float | None = None
+    """With ``greedy_smoothing`` (beyond the paper): the smoothed row only breaks ties. The leaf's
+    own Q-bar picks the greedy action unless another allowed action's Q-bar lies within this
+    many standard errors of it, sqrt(se_best^2 + se_a^2), where an action's standard error is
+    the sample deviation of its stored epochs' eq. (8) targets over the root of their count
+    (infinite below two epochs; in an ensemble, the mean over the trees). Only then do the tied
+    actions compete on the smoothed row. Where a leaf's evidence separates its actions (a
+    maze's corridor) its choice stands; where it cannot, the neighbours decide. Needs
+    ``planning = "sweep"``. None: every allowed action competes on the smoothed row."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -637,6 +653,35 @@ class TreeConfig:
             or not 0.0 <= h <= 1.0
         ):
             raise ValueError(f"TreeConfig.greedy_smoothing must be a number in [0, 1], got {h!r}")
+        if not isinstance(self.greedy_smoothing_links, bool):
+            raise ValueError(
+                "TreeConfig.greedy_smoothing_links must be a bool, got "
+                f"{self.greedy_smoothing_links!r}"
+            )
+        z = self.greedy_tie_errors
+        if z is not None and (
+            isinstance(z, bool) or not isinstance(z, int | float) or not math.isfinite(z) or z <= 0
+        ):
+            raise ValueError(
+                f"TreeConfig.greedy_tie_errors must be a number > 0 or None, got {z!r}"
+            )
+        for name, on in (
+            ("greedy_smoothing_links", self.greedy_smoothing_links),
+            ("greedy_tie_errors", z is not None),
+        ):
+            if not on:
+                continue
+            value = getattr(self, name)
+            if h == 0.0:
+                raise ValueError(
+                    f"TreeConfig.{name} = {value!r} needs greedy_smoothing > 0 (it shapes the "
+                    "smoothed greedy choice), got greedy_smoothing = 0"
+                )
+            if self.planning != "sweep":
+                raise ValueError(
+                    f"TreeConfig.{name} = {value!r} needs planning = 'sweep' (it reads the "
+                    f"model's stored epochs), got planning = {self.planning!r}"
+                )
 
     def _check_greedy_min_epochs(self) -> None:
         k = self.greedy_min_epochs

@@ -160,6 +160,42 @@ class LeafModel:
         ]
         return firsts, values
 
+    def errors(self, leaf: int, q: list[list[float]]) -> list[float]:
+        """The standard error of each action's Q-bar in ``leaf`` under the values ``q``: the
+        sample deviation of its stored epochs' eq. (8) targets (:meth:`targets`) over the root
+        of their count; infinite with fewer than two (``TreeConfig.greedy_tie_errors``)."""
+        out = []
+        for action in range(self.n_actions):
+            _, values = self.targets(leaf, action, q)
+            n = len(values)
+            if n < 2:
+                out.append(math.inf)
+                continue
+            mean = math.fsum(values) / n
+            spread = math.fsum((v - mean) ** 2 for v in values) / (n - 1)
+            out.append(math.sqrt(spread) / math.sqrt(n))
+        return out
+
+    def linked(self, a: int, b: int) -> bool:
+        """Whether an epoch stored from leaf ``a`` ends in leaf ``b`` or one from ``b`` ends in
+        ``a`` (``TreeConfig.greedy_smoothing_links``)."""
+        n = self.n_actions
+        return any(key // n == a for key in self._preds.get(b, ())) or any(
+            key // n == b for key in self._preds.get(a, ())
+        )
+
+    def links(self) -> list[tuple[int, int]]:
+        """Every pair ``(a, b)``, ``a < b``, that :meth:`linked` joins, sorted."""
+        n = self.n_actions
+        pairs = {
+            (min(key // n, end), max(key // n, end))
+            for end, keys in self._preds.items()
+            if end >= 0
+            for key in keys
+            if key // n != end
+        }
+        return sorted(pairs)
+
     def collisions(self, leaf: int, action: int) -> tuple[list[Stored], list[bool]]:
         """The first input of every stored epoch of (leaf, action), oldest first, and whether
         it ended on a collision (``TreeConfig.collision_splits``)."""

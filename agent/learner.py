@@ -132,6 +132,10 @@ class SMDPAgent:
         self.saved_support: list[list[int]] | None = None
         """``TreeConfig.greedy_min_epochs``: the stored-epoch counts a policy-only file was
         saved with (None otherwise); they stay a floor on the model's counts for its leaves."""
+        self.saved_errors: list[list[float]] | None = None
+        """Standard errors a policy-only file was saved with (``TreeConfig.greedy_tie_errors``)."""
+        self.saved_links: set[tuple[int, int]] | None = None
+        """Leaf links a policy-only file was saved with (``TreeConfig.greedy_smoothing_links``)."""
         self.partition: Partition = self._make_partition(low, high)
         if self._track_scale:
             if hasattr(self.partition, "scale"):
@@ -600,26 +604,34 @@ class SMDPAgent:
         leaf = self.partition.leaf_of(x)
         row = self.q[leaf]
         if deterministic:
-            allowed = self._supported([self], [leaf])
-            if self.config.greedy_smoothing > 0.0:
-                row = self._smoothed_row(x, leaf, row, lambda p: self.q[self.partition.leaf_of(p)])
-            return greedy_among(row, allowed)
+            leaves_at = lambda p: [self.partition.leaf_of(p)]  # noqa: E731
+            return self._greedy_choice(x, [self], [leaf], row, leaves_at, lambda ls: self.q[ls[0]])
         return self.exploration.select(leaf, row, self.uniform)
 
-    def _smoothed_row(
+    def _greedy_choice(
         self,
         x: list[float],
-        leaf: int,
+        agents: Sequence[SMDPAgent],
+        leaves: list[int],
         row: list[float],
-        row_at: Callable[[list[float]], list[float]],
-    ) -> list[float]:
-        """``TreeConfig.greedy_smoothing``: the mean of ``row_at(p)`` over ``x`` and ``x``
-        moved by +-h times the width of ``leaf`` (this tree's leaf of ``x``) along each
-        dimension it bounds; ``row`` itself where the leaf holds a single input."""
-        if self.holds_one_input(leaf):
-            return row
-        h = self.config.greedy_smoothing
-        low, high = self.partition.leaf_bounds(leaf)
+        leaves_at: Callable[[list[float]], list[int]],
+        row_of: Callable[[list[int]], list[float]],
+    ) -> int:
+        """``predict``'s greedy action: eq. (11) over ``row`` (the Q-bar row of ``leaves``,
+        ``agents[i]``'s leaf ``leaves[i]`` holding ``x``) among the allowed actions
+        (``TreeConfig.greedy_min_epochs``), or with ``TreeConfig.greedy_smoothing`` over the
+        smoothed row, among the tied actions of ``TreeConfig.greedy_tie_errors``.
+        ``leaves_at(p)`` gives the leaves of a point and ``row_of(leaves)`` their row."""
+        cfg = self.config
+        allowed = self._supported(agents, leaves)
+        if cfg.greedy_smoothing == 0.0 or self.holds_one_input(leaves[0]):
+            return greedy_among(row, allowed)
+        if cfg.greedy_tie_errors is not None:
+            allowed = self._tied(agents, leaves, row, allowed, cfg.greedy_tie_errors)
+            if len(allowed) == 1:
+                return allowed[0]
+        low, high = self.partition.leaf_bounds(leaves[0])
+        h = cfg.greedy_smoothing
         rows = [row]
         for j, (lo, hi) in enumerate(zip(low, high, strict=True)):
             if not -math.inf < lo < hi < math.inf:
@@ -627,9 +639,57 @@ class SMDPAgent:
             for step in (-h * (hi - lo), h * (hi - lo)):
                 moved = list(x)
                 moved[j] += step
-                rows.append(row_at(moved))
+                if not cfg.greedy_smoothing_links:
+                    rows.append(row_of(leaves_at(moved)))
+                    continue
+                others = leaves_at(moved)
+                if others != leaves and all(
+                    other == own or agent.linked(own, other)
+                    for agent, own, other in zip(agents, leaves, others, strict=True)
+                ):
+                    rows.append(row_of(others))
         n = len(rows)
-        return [sum(column) / n for column in zip(*rows, strict=True)]
+        smoothed = [sum(column) / n for column in zip(*rows, strict=True)]
+        return greedy_among(smoothed, allowed)
+
+    def _tied(
+        self,
+        agents: Sequence[SMDPAgent],
+        leaves: list[int],
+        row: list[float],
+        allowed: list[int] | None,
+        z: float,
+    ) -> list[int]:
+        """``TreeConfig.greedy_tie_errors``: the allowed actions whose Q-bar in ``row`` lies
+        within ``z`` combined standard errors of the greedy action's (that action first)."""
+        best = greedy_among(row, allowed)
+        each = [agent.action_errors(leaf) for agent, leaf in zip(agents, leaves, strict=True)]
+        errors = [sum(column) / len(each) for column in zip(*each, strict=True)]
+        candidates = range(self.n_actions) if allowed is None else allowed
+        tied = [best]
+        for a in candidates:
+            if a != best and abs(row[best] - row[a]) <= z * math.hypot(errors[best], errors[a]):
+                tied.append(a)
+        return tied
+
+    def action_errors(self, leaf: int) -> list[float]:
+        """The standard error of each action's Q-bar in ``leaf`` (``LeafModel.errors``); for a
+        leaf without stored epochs, those a policy-only file was saved with, if any (infinite
+        otherwise)."""
+        saved = self.saved_errors
+        unlearnt = self.model is None or not any(self.model.counts(leaf))
+        if saved is not None and leaf < len(saved) and unlearnt:
+            return list(saved[leaf])
+        if self.model is None:
+            return [math.inf] * self.n_actions
+        return self.model.errors(leaf, self.q)
+
+    def linked(self, a: int, b: int) -> bool:
+        """Whether the model links leaves ``a`` and ``b`` (``LeafModel.linked``) or a
+        policy-only file was saved with the link."""
+        if self.saved_links is not None and (min(a, b), max(a, b)) in self.saved_links:
+            return True
+        return self.model is not None and self.model.linked(a, b)
 
     def support(self, leaf: int) -> list[int]:
         """Epochs of each action stored in the model for ``leaf`` (at least the counts a
@@ -781,6 +841,12 @@ class SMDPAgent:
         if policy_only and self.config.greedy_min_epochs > 0:  # the model is left out
             support = [self.support(leaf) for leaf in range(len(self.q))]
             arrays["support"] = np.asarray(support, dtype=np.int64).reshape(len(self.q), -1)
+        if policy_only and self.config.greedy_tie_errors is not None:
+            errors = [self.action_errors(leaf) for leaf in range(len(self.q))]
+            arrays["errors"] = np.asarray(errors, dtype=np.float64).reshape(len(self.q), -1)
+        if policy_only and self.config.greedy_smoothing_links:
+            pairs = self.model.links() if self.model is not None else sorted(self.saved_links or ())
+            arrays["links"] = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
         return serialization.write_agent_file(path, metadata, arrays)
 
     @classmethod
@@ -932,6 +998,10 @@ class SMDPAgent:
         agent.visits = saved.visits.tolist()
         if saved.support is not None:
             agent.saved_support = saved.support.tolist()
+        if saved.errors is not None:
+            agent.saved_errors = saved.errors.tolist()
+        if saved.links is not None:
+            agent.saved_links = {(int(a), int(b)) for a, b in saved.links.tolist()}
         agent.episodes_done = saved.episodes_done
         return agent
 

@@ -19,7 +19,9 @@ built from them:
 
 A *policy-only* file (:data:`LEARNING_ARRAYS` left out) holds what acting needs: the partition,
 Q-bar, counts, the strategy and the generator (and, with ``TreeConfig.greedy_min_epochs``, the
-model's stored-epoch counts, entry ``support``). Loaded, it acts exactly like the full file; it
+model's stored-epoch counts, entry ``support``; with ``TreeConfig.greedy_tie_errors`` the
+standard errors, ``errors``; with ``TreeConfig.greedy_smoothing_links`` the linked leaf pairs,
+``links``). Loaded, it acts exactly like the full file; it
 continues learning with empty error buffers, so only the full file resumes training exactly.
 
 This module imports no agent class: the learner (``SMDPAgent.save`` / ``load``) gathers and
@@ -353,6 +355,12 @@ class SavedAgent:
     support: np.ndarray | None = None
     """A policy-only file's stored-epoch counts per (leaf, action), which the greedy choice of
     ``TreeConfig.greedy_min_epochs`` reads in place of the model (None otherwise)."""
+    errors: np.ndarray | None = None
+    """A policy-only file's standard errors per (leaf, action), which
+    ``TreeConfig.greedy_tie_errors`` reads in place of the model (None otherwise)."""
+    links: np.ndarray | None = None
+    """A policy-only file's linked leaf pairs, one ``(a, b)`` with ``a < b`` a row, which
+    ``TreeConfig.greedy_smoothing_links`` reads in place of the model (None otherwise)."""
 
     def fail(self, message: str) -> ValueError:
         """A ``ValueError`` naming the file."""
@@ -419,6 +427,10 @@ def _read_archive(
     expected = _expected_entries(kind, policy_only, fail)
     if policy_only and config.greedy_min_epochs > 0:  # the greedy choice's counts
         expected.append("support")
+    if policy_only and config.greedy_tie_errors is not None:  # the greedy choice's ties
+        expected.append("errors")
+    if policy_only and config.greedy_smoothing_links:  # the smoothing's links
+        expected.append("links")
     unknown = sorted(set(members) - {"metadata", "q", "visits"} - set(expected))
     missing = sorted(
         {"q", "visits", *expected} - set(members) - {f"partition.{n}" for n in OPTIONAL_ARRAYS}
@@ -464,6 +476,20 @@ def _read_archive(
         window = config.model_window
         if ((support < 0) | (support > window)).any():
             raise fail(f"entry 'support' holds counts outside [0, model_window = {window}]")
+    errors = None
+    if "errors" in expected:
+        errors = read("errors", "f8", 2)
+        if errors.shape != (n_ids, n_actions):
+            raise fail(f"entry 'errors' has shape {errors.shape}, expected {(n_ids, n_actions)}")
+        if np.isnan(errors).any() or (errors < 0).any():
+            raise fail("entry 'errors' holds standard errors that are negative or not a number")
+    links = None
+    if "links" in expected:
+        links = read("links", "i8", 2)
+        if links.shape[1:] != (2,):
+            raise fail(f"entry 'links' has shape {links.shape}, expected (pairs, 2)")
+        if ((links < 0) | (links >= n_ids)).any() or (links[:, 0] >= links[:, 1]).any():
+            raise fail(f"entry 'links' holds pairs that are not leaf ids a < b below {n_ids}")
 
     box = meta["observation_space"]
     dtype = np.dtype(box["dtype"])
@@ -493,6 +519,8 @@ def _read_archive(
         policy_only=policy_only,
         learner=meta.get("learner"),
         support=support,
+        errors=errors,
+        links=links,
     )
 
 

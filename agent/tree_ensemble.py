@@ -42,7 +42,7 @@ from agent.exploration.base import greedy_action
 from agent.leaf_model import Stored
 from agent.learner import Bounds
 from agent.partition_tree import PartitionTree
-from agent.smdp import epoch_returns, greedy_among
+from agent.smdp import epoch_returns
 from agent.tree_agent import TreeAgent
 
 
@@ -197,13 +197,8 @@ class TreeEnsembleAgent(TreeAgent):
         x = np.asarray(obs, dtype=np.float64).reshape(-1).tolist()
         leaves = self._leaves(x)
         row = self.mean_row(leaves)
-        if deterministic:
-            allowed = self._supported(self.members, leaves)
-            if self.config.greedy_smoothing > 0.0:  # moved by tree 0's leaf, every tree's row
-                row = self._smoothed_row(
-                    x, leaves[0], row, lambda p: self.mean_row(self._leaves(p))
-                )
-            return greedy_among(row, allowed)
+        if deterministic:  # smoothing moves by tree 0's leaf and reads every tree's row
+            return self._greedy_choice(x, self.members, leaves, row, self._leaves, self.mean_row)
         return self.exploration.select(leaves[0], row, self.uniform)
 
     @property

@@ -57,6 +57,9 @@ PARTS: dict[int, str] = {
     24: "greedy_min_epochs 2, greedy_cell_epochs 1: predict's greedy choice asks two stored "
     "epochs (one in a single-input leaf); no training step changes, so every run should be the "
     "same",
+    25: "greedy_smoothing 1 with links and greedy_tie_errors 0.5: predict's greedy choice reads "
+    "the leaf's standard errors and, at a tie, its linked neighbours' rows; no training step "
+    "changes, so every run should be the same",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

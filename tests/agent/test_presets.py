@@ -51,6 +51,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"failure_measure"}  # issue 9, part 20
     others |= {"greedy_min_epochs"}  # issue 9, part 23
     others |= {"greedy_cell_epochs"}  # issue 9, part 24
+    others |= {"greedy_smoothing", "greedy_smoothing_links", "greedy_tie_errors"}  # part 25
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -70,6 +71,9 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.policy_splits is False  # part 21: withdrawn on more dev seeds
     # parts 23 and 24 ("A greedy choice among supported actions")
     assert (general.greedy_min_epochs, general.greedy_cell_epochs) == (2, 1)
+    # part 25 ("Neighbours break the ties")
+    assert (general.greedy_smoothing, general.greedy_smoothing_links) == (1.0, True)
+    assert general.greedy_tie_errors == 0.5
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -225,6 +229,10 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
+    assert general_as_of(25) == now
+    now = dataclasses.replace(
+        now, greedy_smoothing=0.0, greedy_smoothing_links=False, greedy_tie_errors=None
+    )
     assert general_as_of(24) == now
     now = dataclasses.replace(now, greedy_min_epochs=1, greedy_cell_epochs=None)
     assert general_as_of(23) == now

@@ -97,7 +97,12 @@ def test_training_is_the_same_run() -> None:
     general = preset("general")
     runs = []
     for h in (0.0, 1.0):
-        config = dataclasses.replace(general.config, greedy_smoothing=h)
+        config = dataclasses.replace(
+            general.config,
+            greedy_smoothing=h,
+            greedy_smoothing_links=h > 0,
+            greedy_tie_errors=0.5 if h > 0 else None,
+        )
         agent = TreeEnsembleAgent(
             env.observation_space, env.action_space, general.make_exploration(), 1, config
         )
