@@ -845,8 +845,10 @@ class SMDPAgent:
             errors = [self.action_errors(leaf) for leaf in range(len(self.q))]
             arrays["errors"] = np.asarray(errors, dtype=np.float64).reshape(len(self.q), -1)
         if policy_only and self.config.greedy_smoothing_links:
-            pairs = self.model.links() if self.model is not None else sorted(self.saved_links or ())
-            arrays["links"] = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+            pairs = set(self.saved_links or ())
+            if self.model is not None:
+                pairs.update(self.model.links())
+            arrays["links"] = np.asarray(sorted(pairs), dtype=np.int64).reshape(-1, 2)
         return serialization.write_agent_file(path, metadata, arrays)
 
     @classmethod

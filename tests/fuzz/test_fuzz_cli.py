@@ -98,6 +98,13 @@ def _cases() -> list[tuple[str, list[str], list[str]]]:
                 "greedy_smoothing=-1",
                 "greedy_smoothing=nan",
                 "greedy_smoothing=2",
+                "greedy_tie_errors=0",
+                "greedy_tie_errors=-0.5",
+                "greedy_tie_errors=inf",
+                "greedy_tie_errors='0.5'",
+                "greedy_tie_errors=0.5",  # needs greedy_smoothing > 0 and planning = 'sweep'
+                "greedy_smoothing_links=1",
+                "greedy_smoothing_links=true",  # needs greedy_smoothing > 0
             ],
         ),
         ("--maze", train, [*TEXT, "nosuch", "/etc/passwd", "missing.toml", "{afile}"]),
