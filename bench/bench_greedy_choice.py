@@ -1,21 +1,23 @@
-"""Cost of the greedy choice among supported actions (``TreeConfig.greedy_min_epochs`` and
-``greedy_cell_epochs``, issue 9, parts 23 and 24) in ``predict``.
+"""Cost of the greedy choice's options in ``predict``: among supported actions
+(``TreeConfig.greedy_min_epochs`` and ``greedy_cell_epochs``, issue 9, parts 23 and 24) and with
+neighbours breaking the actions' ties (``greedy_smoothing``, ``greedy_smoothing_links`` and
+``greedy_tie_errors``, part 25).
 
 One agent of the general preset learns MountainCar-v0 (and one the ``paper`` maze, and one
 Taxi-v4, whose integer input makes every leaf a single-input cell); then ``predict`` is timed on
-the same random states with the preset's options (2 epochs, 1 in a cell) and with neither
-(part 22's greedy choice), in interleaved rounds (CPU time of this process). Training is the
-same either way (the option changes no training step), so only ``predict`` is timed. Prints
-microseconds per call and the ratio (median over rounds, with its range).
+the same random states with the general preset as it was after part 22 (no option), after part
+24 (2 epochs, 1 in a cell) and now (``agent.general_as_of``), in interleaved rounds (CPU time of
+this process). Training is the same either way (the options change no training step), so only
+``predict`` is timed. Prints microseconds per call and the ratios to part 22's (median over
+rounds, with its range).
 
-    python bench/bench_greedy_choice.py             # 5 rounds, about a minute
+    python bench/bench_greedy_choice.py             # 5 rounds, about two minutes
     python bench/bench_greedy_choice.py --rounds 3 --episodes 100
 """
 
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import statistics
 import time
 
@@ -23,7 +25,7 @@ import gymnasium as gym
 import numpy as np
 
 import bullet_maze  # noqa: F401 (registers BulletMaze-v0)
-from agent import adapt_env, preset
+from agent import adapt_env, general_as_of, preset
 from agent.tree_ensemble import tree_agent_class
 
 TASKS = {
@@ -54,26 +56,32 @@ def main() -> None:
         states = np.random.default_rng(0).uniform(low, high, size=(args.calls, len(low)))
         if np.issubdtype(space.dtype, np.integer):  # type: ignore[arg-type]
             states = np.rint(states).astype(space.dtype)
-        off = dataclasses.replace(general.config, greedy_min_epochs=0, greedy_cell_epochs=None)
-        configs = {1: general.config, 0: off}
-        times: dict[int, list[float]] = {0: [], 1: []}
-        changed = 0
+        configs = {22: general_as_of(22), 24: general_as_of(24), 25: general.config}
+        times: dict[int, list[float]] = {part: [] for part in configs}
+        changed = {part: 0 for part in configs}
         for _ in range(args.rounds):
             chosen = {}
-            for k, config in configs.items():
+            for part, config in configs.items():
                 agent.config = config
                 start = time.process_time()
-                chosen[k] = [agent.predict(s) for s in states]
-                times[k].append((time.process_time() - start) / args.calls * 1e6)
-            changed = sum(a != b for a, b in zip(chosen[0], chosen[1], strict=True))
+                chosen[part] = [agent.predict(s) for s in states]
+                times[part].append((time.process_time() - start) / args.calls * 1e6)
+            for part in configs:
+                changed[part] = sum(a != b for a, b in zip(chosen[22], chosen[part], strict=True))
         agent.config = general.config
-        ratios = [new / old for new, old in zip(times[1], times[0], strict=True)]
+        cells = []
+        for part in (24, 25):
+            ratios = [new / old for new, old in zip(times[part], times[22], strict=True)]
+            cells.append(
+                f"part {part}'s {statistics.median(times[part]):.1f} us, ratio "
+                f"{statistics.median(ratios):.3f} [{min(ratios):.3f}, {max(ratios):.3f}], "
+                f"{changed[part]} states choose another action"
+            )
         print(
-            f"{task}: {agent.n_leaves} leaves after {args.episodes} episodes; predict "
-            f"{statistics.median(times[1]):.1f} us (greedy_min_epochs 2, 1 in a cell) against "
-            f"{statistics.median(times[0]):.1f} us (0): ratio {statistics.median(ratios):.3f} "
-            f"[{min(ratios):.3f}, {max(ratios):.3f}]; {changed} of {args.calls:,} random states "
-            "choose another action"
+            f"{task}: {agent.n_leaves} leaves after {args.episodes} episodes; predict: part 22's "
+            f"{statistics.median(times[22]):.1f} us; "
+            + "; ".join(cells)
+            + f" (of {args.calls:,} random states)"
         )
         env.close()
 
