@@ -15,6 +15,8 @@ import importlib.util
 import math
 from pathlib import Path
 
+import numpy as np
+
 RESULTS = Path(__file__).resolve().parent.parent
 _SPEC = importlib.util.spec_from_file_location(
     "part23_pair", RESULTS / "issue9_part23_heldout_rows" / "pair.py"
@@ -26,6 +28,21 @@ runs = _PART23.runs  # run seed -> (training SHA-256, mean greedy return)
 maze_runs = _PART23.maze_runs  # run seed -> (training SHA-256, greedy / optimum, capped, episodes)
 TARGET = {"MountainCar-v0": -110.0, "Acrobot-v1": -100.0, "CartPole-v1": 475.0}
 MOUNTAINCAR_SETS = (11101, 11104, 12101, 13101, 19101, 21101, 21102, 21103, 22101, 22102)
+
+
+def wilson(k: int, n: int, z: float = 1.96) -> str:
+    """A Wilson 95 % interval of the rate k / n, as text."""
+    p = k / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
+    return f"{p:.2f} [{centre - half:.2f}, {centre + half:.2f}]"
+
+
+def sign_p(higher: int, lower: int) -> float:
+    """Two-sided sign-test p-value (ties dropped)."""
+    n = higher + lower
+    tail = sum(math.comb(n, i) for i in range(min(higher, lower) + 1)) / 2**n
+    return min(1.0, 2 * tail)
 
 
 def compare(label: str, task: str, new: dict, old: dict) -> tuple[list[float], list[float]]:
@@ -69,7 +86,13 @@ def mazes() -> None:
             logs["new"].append(math.log(new[seed][1]))
     if logs["old"]:
         gm = {k: math.exp(sum(v) / len(v)) for k, v in logs.items()}
-        print(f"mazes: geometric-mean greedy steps / optimum {gm['old']:.3f} -> {gm['new']:.3f}")
+        pairs = list(zip(logs["old"], logs["new"], strict=True))
+        better = sum(b < a - 1e-12 for a, b in pairs)
+        worse = sum(b > a + 1e-12 for a, b in pairs)
+        print(
+            f"mazes: geometric-mean greedy steps / optimum {gm['old']:.3f} -> {gm['new']:.3f}; "
+            f"runs better {better}, worse {worse}, level {len(pairs) - better - worse}"
+        )
 
 
 def main() -> None:
@@ -112,10 +135,16 @@ def main() -> None:
     for task, (olds, news) in totals.items():
         target, n = TARGET[task], len(olds)
         diffs = [b - a for a, b in zip(olds, news)]
+        higher, lower = sum(d > 0 for d in diffs), sum(d < 0 for d in diffs)
+        rng = np.random.default_rng(0)
+        means = rng.choice(np.asarray(diffs), size=(10_000, n)).mean(axis=1)
+        low, high = np.percentile(means, [2.5, 97.5])
+        solved = {k: sum(v >= target for v in vs) for k, vs in (("24", olds), ("25", news))}
         print(
-            f"total {task} ({n} runs): part 24 {sum(v >= target for v in olds)}, part 25 "
-            f"{sum(v >= target for v in news)}; mean paired change {sum(diffs) / n:+.2f}; "
-            f"higher {sum(d > 0 for d in diffs)}, lower {sum(d < 0 for d in diffs)}"
+            f"total {task} ({n} runs): part 24 {solved['24']} {wilson(solved['24'], n)}, part 25 "
+            f"{solved['25']} {wilson(solved['25'], n)}; mean paired change "
+            f"{sum(diffs) / n:+.2f} [{low:+.2f}, {high:+.2f}]; higher {higher}, lower {lower}, "
+            f"sign test p = {sign_p(higher, lower):.2g}"
         )
     mazes()
 
