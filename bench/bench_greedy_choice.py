@@ -9,7 +9,9 @@ the same random states with the general preset as it was after part 22 (no optio
 24 (2 epochs, 1 in a cell) and now (``agent.general_as_of``), in interleaved rounds (CPU time of
 this process). Training is the same either way (the options change no training step), so only
 ``predict`` is timed. Prints microseconds per call and the ratios to part 22's (median over
-rounds, with its range).
+rounds, with its range). Random states reach leaves the agent barely visited, where most actions
+are statistical ties; so it also times what a user sees, whole greedy episodes (the environment's
+steps included, ``experiments.evaluation.evaluate`` from reset seed 0), per part and round.
 
     python bench/bench_greedy_choice.py             # 5 rounds, about two minutes
     python bench/bench_greedy_choice.py --rounds 3 --episodes 100
@@ -27,6 +29,7 @@ import numpy as np
 import bullet_maze  # noqa: F401 (registers BulletMaze-v0)
 from agent import adapt_env, general_as_of, preset
 from agent.tree_ensemble import tree_agent_class
+from experiments.evaluation import evaluate
 
 TASKS = {
     "MountainCar-v0": {},
@@ -40,9 +43,12 @@ def main() -> None:
     parser.add_argument("--rounds", type=int, default=5, help="interleaved rounds (5)")
     parser.add_argument("--episodes", type=int, default=200, help="training episodes (200)")
     parser.add_argument("--calls", type=int, default=20000, help="predict calls a round (20,000)")
+    parser.add_argument(
+        "--eval-episodes", type=int, default=10, help="greedy episodes timed a round (10)"
+    )
     args = parser.parse_args()
-    if min(args.rounds, args.episodes, args.calls) < 1:
-        parser.error("--rounds, --episodes and --calls must be at least 1")
+    if min(args.rounds, args.episodes, args.calls, args.eval_episodes) < 1:
+        parser.error("--rounds, --episodes, --calls and --eval-episodes must be at least 1")
     general = preset("general")
     for task, kwargs in TASKS.items():
         env = adapt_env(gym.make(task, **kwargs))  # Taxi's index as one integer input
@@ -58,6 +64,8 @@ def main() -> None:
             states = np.rint(states).astype(space.dtype)
         configs = {22: general_as_of(22), 24: general_as_of(24), 25: general.config}
         times: dict[int, list[float]] = {part: [] for part in configs}
+        episode_ms: dict[int, list[float]] = {part: [] for part in configs}
+        steps = dict.fromkeys(configs, 0)
         changed = {part: 0 for part in configs}
         for _ in range(args.rounds):
             chosen = {}
@@ -66,10 +74,14 @@ def main() -> None:
                 start = time.process_time()
                 chosen[part] = [agent.predict(s) for s in states]
                 times[part].append((time.process_time() - start) / args.calls * 1e6)
+                start = time.process_time()
+                greedy = evaluate(env, agent, args.eval_episodes, seed=0)
+                episode_ms[part].append((time.process_time() - start) / args.eval_episodes * 1e3)
+                steps[part] = sum(e.steps for e in greedy.episodes)
             for part in configs:
                 changed[part] = sum(a != b for a, b in zip(chosen[22], chosen[part], strict=True))
         agent.config = general.config
-        cells = []
+        cells, episodes = [], []
         for part in (24, 25):
             ratios = [new / old for new, old in zip(times[part], times[22], strict=True)]
             cells.append(
@@ -77,11 +89,22 @@ def main() -> None:
                 f"{statistics.median(ratios):.3f} [{min(ratios):.3f}, {max(ratios):.3f}], "
                 f"{changed[part]} states choose another action"
             )
+            ratios = [new / old for new, old in zip(episode_ms[part], episode_ms[22], strict=True)]
+            episodes.append(
+                f"part {part}'s {statistics.median(episode_ms[part]):.2f} ms "
+                f"({steps[part] / args.eval_episodes:.0f} steps), ratio "
+                f"{statistics.median(ratios):.3f} [{min(ratios):.3f}, {max(ratios):.3f}]"
+            )
         print(
             f"{task}: {agent.n_leaves} leaves after {args.episodes} episodes; predict: part 22's "
             f"{statistics.median(times[22]):.1f} us; "
             + "; ".join(cells)
             + f" (of {args.calls:,} random states)"
+        )
+        print(
+            f"{task}: a greedy episode with the environment's steps: part 22's "
+            f"{statistics.median(episode_ms[22]):.2f} ms "
+            f"({steps[22] / args.eval_episodes:.0f} steps); " + "; ".join(episodes)
         )
         env.close()
 
