@@ -34,7 +34,7 @@ import heapq
 import math
 from array import array
 from collections import deque
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 Stored = array
@@ -150,27 +150,40 @@ class LeafModel:
         records = self._records.get(leaf * self.n_actions + action)
         if not records:
             return [], []
-        firsts = [record[0] for record in records]
+        return [record[0] for record in records], self._target_values(records, q, {})
+
+    def _target_values(
+        self, records: Iterable[Record], q: list[list[float]], v_bar: dict[int, float]
+    ) -> list[float]:
+        """The eq. (8) target ``R + D V-bar(l')`` of each record under ``q``; ``v_bar`` caches
+        each end leaf's ``max q[l']`` across calls that share it (the same values either way)."""
         novel = self.novel_value
-        values = [
-            reward
-            if end is None
-            else reward + discount * (novel if end_leaf == _NOVEL else max(q[end_leaf]))
-            for _, reward, discount, end, end_leaf, _ in records
-        ]
-        return firsts, values
+        values = []
+        for _, reward, discount, end, end_leaf, _ in records:
+            if end is None:
+                values.append(reward)
+                continue
+            if end_leaf == _NOVEL:
+                value = novel
+            else:
+                cached = v_bar.get(end_leaf)
+                value = v_bar[end_leaf] = max(q[end_leaf]) if cached is None else cached
+            values.append(reward + discount * value)
+        return values
 
     def errors(self, leaf: int, q: list[list[float]]) -> list[float]:
         """The standard error of each action's Q-bar in ``leaf`` under the values ``q``: the
         sample deviation of its stored epochs' eq. (8) targets (:meth:`targets`) over the root
         of their count; infinite with fewer than two (``TreeConfig.greedy_tie_errors``)."""
         out = []
+        v_bar: dict[int, float] = {}  # each end leaf's V-bar, read once for all the actions
         for action in range(self.n_actions):
-            _, values = self.targets(leaf, action, q)
-            n = len(values)
-            if n < 2:
+            records = self._records.get(leaf * self.n_actions + action)
+            if records is None or len(records) < 2:
                 out.append(math.inf)
                 continue
+            values = self._target_values(records, q, v_bar)
+            n = len(values)
             mean = math.fsum(values) / n
             spread = math.fsum((v - mean) ** 2 for v in values) / (n - 1)
             out.append(math.sqrt(spread) / math.sqrt(n))
