@@ -17,7 +17,7 @@ TARGET = {"MountainCar-v0": -110.0, "Acrobot-v1": -100.0, "CartPole-v1": 475.0}
 
 
 def main() -> None:
-    for name in ("ta_mc", "ta_ac", "ta_cp"):
+    for name in ("ta_mc", "ta_ac", "ta_cp", "tb_mc", "tb_ac"):
         path = HERE / f"{name}.jsonl"
         if not path.exists():
             continue
@@ -35,25 +35,35 @@ def main() -> None:
                 f"{task} {variant}: {len(seeds)} seeds, mean {statistics.mean(runs[s] for s in seeds):.2f}, "
                 f"at target {sum(runs[s] >= TARGET[task] for s in seeds)}; vs p25 higher {higher}, lower {lower}"
             )
-    path = HERE / "ta_maze.jsonl"
-    if path.exists():
-        rows = [json.loads(line) for line in path.open()]
-        by: dict[str, dict] = {}
-        for r in rows:
-            by.setdefault(r["variant"], {})[(r["maze"], r["seed"])] = (r["greedy"], r["capped"])
-        runs = sorted(set.intersection(*(set(v) for v in by.values())))
-        base = by["p25"]
-        for variant, got in by.items():
-            log = statistics.mean(math.log(got[k][0]) for k in runs)
-            better = sum(got[k][0] < base[k][0] for k in runs)
-            worse = sum(got[k][0] > base[k][0] for k in runs)
-            print(
-                f"mazes {variant}: {len(runs)} runs, greedy / optimum {math.exp(log):.3f} "
-                f"(geometric mean), runs with a capped episode {sum(got[k][1] > 0 for k in runs)}; "
-                f"vs p25 better {better}, worse {worse}"
-            )
-        for k in runs:
-            print("  ", k[0], k[1], {v: got[k][0] for v, got in by.items()})
+    for path in (HERE / "ta_maze.jsonl", HERE / "tb_maze.jsonl"):
+        if path.exists():
+            mazes(path)
+    acrobot_longer()
+
+
+def mazes(path: Path) -> None:
+    """Greedy steps over the optimum per variant, against ``p25``, and per run."""
+    rows = [json.loads(line) for line in path.open()]
+    by: dict[str, dict] = {}
+    for r in rows:
+        by.setdefault(r["variant"], {})[(r["maze"], r["seed"])] = (r["greedy"], r["capped"])
+    runs = sorted(set.intersection(*(set(v) for v in by.values())))
+    base = by["p25"]
+    for variant, got in by.items():
+        log = statistics.mean(math.log(got[k][0]) for k in runs)
+        better = sum(got[k][0] < base[k][0] for k in runs)
+        worse = sum(got[k][0] > base[k][0] for k in runs)
+        print(
+            f"mazes ({path.stem}) {variant}: {len(runs)} runs, greedy / optimum {math.exp(log):.3f} "
+            f"(geometric mean), runs with a capped episode {sum(got[k][1] > 0 for k in runs)}; "
+            f"vs p25 better {better}, worse {worse}"
+        )
+    for k in runs:
+        print("  ", k[0], k[1], {v: got[k][0] for v, got in by.items()})
+
+
+def acrobot_longer() -> None:
+    """``longer_runs.py``'s checkpoints."""
     path = HERE / "acrobot_longer.jsonl"
     if path.exists():
         rows = [json.loads(line) for line in path.open()]

@@ -15,12 +15,17 @@ runs as part 25's probe, beside part 24's choice (``leaf``) and part 25's (``p25
 
     python tie_ancestor.py TASK OUT SEED [SEED ...]        (classic: 20 greedy episodes)
     python tie_ancestor.py maze:LAYOUT OUT SEED [SEED ...] (600 episodes as maze_support.py)
+
+``VARIANTS=p25,anc1_nb,anc1_up2,anc1_up4`` in the environment picks the second round's forms:
+``_nb`` gives part 25's neighbours the ties no ancestor resolves (instead of the leaf's best);
+``_upK`` asks at most K ancestors (the nearest, whose regions are at most 2^K leaves wide).
 """
 
 from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 import warnings
 from pathlib import Path
@@ -30,14 +35,16 @@ import numpy as np
 HERE = Path(__file__).resolve()
 sys.path.insert(0, str(HERE.parents[1] / "issue9_part23_dev"))
 sys.path.insert(0, str(HERE.parents[1] / "issue9_part24_dev"))
+sys.path.insert(0, str(HERE.parents[1] / "issue9_part25_dev"))
 from supported_greedy import greedy_returns  # noqa: E402
 
 import bullet_maze  # noqa: E402, F401
 from agent import general_as_of, preset  # noqa: E402
 from float_tasks_support import train  # noqa: E402
 from gated_smoothing import maze_run  # noqa: E402
+from tie_gated import smoothed_row  # noqa: E402
 
-VARIANTS = ("leaf", "p25", "anc0.5", "anc1", "anc2")
+VARIANTS = tuple(os.environ.get("VARIANTS", "leaf,p25,anc0.5,anc1,anc2").split(","))
 
 
 def node_stats(agent) -> dict[tuple[int, int], tuple[int, float, float]]:
@@ -57,7 +64,9 @@ def node_stats(agent) -> dict[tuple[int, int], tuple[int, float, float]]:
     return stats
 
 
-def ancestor_action(agent, obs, z: float, stats: dict, counts: dict) -> int:
+def ancestor_action(
+    agent, obs, z: float, stats: dict, counts: dict, up: int | None = None, nb: bool = False
+) -> int:
     x = np.asarray(obs, dtype=np.float64).reshape(-1).tolist()
     leaf = agent.partition.leaf_of(x)
     row = agent.q[leaf]
@@ -67,8 +76,9 @@ def ancestor_action(agent, obs, z: float, stats: dict, counts: dict) -> int:
     if len(tied) < 2:
         return tied[0]
     counts["ties"] = counts.get("ties", 0) + 1
-    node = agent.partition._parent[leaf]
-    while node >= 0 and len(tied) > 1:
+    node, asked = agent.partition._parent[leaf], 0
+    while node >= 0 and len(tied) > 1 and (up is None or asked < up):
+        asked += 1
         mean, se = {}, {}
         for a in tied:
             n, s, ss = stats.get((node, a), (0, 0.0, 0.0))
@@ -80,9 +90,13 @@ def ancestor_action(agent, obs, z: float, stats: dict, counts: dict) -> int:
             a for a in tied if a != best and abs(mean[best] - mean[a]) <= z * math.hypot(se[best], se[a])
         ]
         node = agent.partition._parent[node]
-    if tied[0] != agent._tied([agent], [leaf], row, allowed, z)[0]:
+    choice = tied[0]
+    if nb and len(tied) > 1:  # part 25's neighbours among what no ancestor resolved
+        smooth = smoothed_row(agent, x, leaf, 1.0)  # part 25's probe: h 1, linked leaves
+        choice = max(tied, key=smooth.__getitem__)
+    if choice != agent._tied([agent], [leaf], row, allowed, z)[0]:
         counts["changed"] = counts.get("changed", 0) + 1
-    return tied[0]
+    return choice
 
 
 def choosers(agent):
@@ -97,10 +111,12 @@ def choosers(agent):
                 agent.config = c
                 return agent.predict(obs)
         else:
-            z = float(name[3:])
-            def choose(obs, z=z, counts=counts):
+            body, _, up = name[3:].partition("_up")
+            nb = body.endswith("_nb")
+            z = float(body.removesuffix("_nb"))
+            def choose(obs, z=z, counts=counts, up=int(up) if up else None, nb=nb):
                 agent.config = configs["p25"]
-                return ancestor_action(agent, obs, z, stats, counts)
+                return ancestor_action(agent, obs, z, stats, counts, up, nb)
         out[name] = (choose, counts)
     return out
 
