@@ -163,11 +163,9 @@ class LeafModel:
             if end is None:
                 values.append(reward)
                 continue
-            if end_leaf == _NOVEL:
-                value = novel
-            else:
-                cached = v_bar.get(end_leaf)
-                value = v_bar[end_leaf] = max(q[end_leaf]) if cached is None else cached
+            value = novel if end_leaf == _NOVEL else v_bar.get(end_leaf)
+            if value is None:
+                value = v_bar[end_leaf] = max(q[end_leaf])
             values.append(reward + discount * value)
         return values
 
