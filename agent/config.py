@@ -290,7 +290,8 @@ class TreeConfig:
     to or from, is left out. In an ensemble, every tree whose leaf the point changes must link
     the two. Needs ``planning = "sweep"``. False: every moved point counts (part 24's probe)."""
     greedy_tie_errors: float | None = None
-    """With ``greedy_smoothing`` (beyond the paper): the smoothed row only breaks ties. The leaf's
+    """With ``greedy_smoothing`` or ``greedy_tie_ancestors`` (beyond the paper): the smoothed
+    row (or the ancestors) only breaks ties. The leaf's
     own Q-bar picks the greedy action unless another allowed action's Q-bar lies within this
     many standard errors of it, sqrt(se_best^2 + se_a^2), where an action's standard error is
     the sample deviation of its stored epochs' eq. (8) targets over the root of their count
@@ -298,6 +299,19 @@ class TreeConfig:
     actions compete on the smoothed row. Where a leaf's evidence separates its actions (a
     maze's corridor) its choice stands; where it cannot, the neighbours decide. Needs
     ``planning = "sweep"``. None: every allowed action competes on the smoothed row."""
+    greedy_tie_ancestors: float | None = None
+    """With ``greedy_tie_errors`` (beyond the paper), instead of ``greedy_smoothing``: the tree's
+    ancestors break the leaf's ties, nearest first. An ancestor compares two tied actions a, b leaf
+    by leaf over the leaves below it where both have a stored epoch: the mean of Q-bar(l, a) -
+    Q-bar(l, b) over those leaves, each counted once (a paired comparison, so a difference between
+    the places where each action was tried does not count), with the standard error of that mean.
+    The ancestor's best tied action is the one with the largest summed mean difference to the
+    others; the actions whose mean difference from it is not above this many standard errors stay
+    tied, and the next ancestor is asked. The first ancestor that leaves one action decides; if even
+    the root leaves several, the root's best among them is chosen. In an ensemble, the trees'
+    ancestors at the same height are asked together (means averaged over the trees, standard errors
+    combined). Needs a tree, reads only Q-bar and the stored-epoch counts (which a policy-only file
+    keeps). None: off."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -644,6 +658,12 @@ class TreeConfig:
                 f"stores the novel ends), got planning = {self.planning!r}"
             )
 
+    @property
+    def greedy_reads_support(self) -> bool:
+        """Whether ``predict`` reads the model's stored-epoch counts (``greedy_min_epochs``,
+        ``greedy_tie_ancestors``), which a policy-only file then keeps."""
+        return self.greedy_min_epochs > 0 or self.greedy_tie_ancestors is not None
+
     def _check_greedy_smoothing(self) -> None:
         h = self.greedy_smoothing
         if (
@@ -665,6 +685,27 @@ class TreeConfig:
             raise ValueError(
                 f"TreeConfig.greedy_tie_errors must be a number > 0 or None, got {z!r}"
             )
+        za = self.greedy_tie_ancestors
+        if za is not None and (
+            isinstance(za, bool)
+            or not isinstance(za, int | float)
+            or not math.isfinite(za)
+            or za <= 0
+        ):
+            raise ValueError(
+                f"TreeConfig.greedy_tie_ancestors must be a number > 0 or None, got {za!r}"
+            )
+        if za is not None:
+            if z is None:
+                raise ValueError(
+                    f"TreeConfig.greedy_tie_ancestors = {za!r} needs greedy_tie_errors (the "
+                    "leaf's test for tied actions), got greedy_tie_errors = None"
+                )
+            if h != 0.0:
+                raise ValueError(
+                    f"TreeConfig.greedy_tie_ancestors = {za!r} and greedy_smoothing = {h!r} "
+                    "are two ways to break the same ties: set greedy_smoothing = 0"
+                )
         for name, on in (
             ("greedy_smoothing_links", self.greedy_smoothing_links),
             ("greedy_tie_errors", z is not None),
@@ -672,10 +713,15 @@ class TreeConfig:
             if not on:
                 continue
             value = getattr(self, name)
-            if h == 0.0:
+            if h == 0.0 and not (name == "greedy_tie_errors" and za is not None):
+                how = (
+                    "greedy_smoothing > 0 or greedy_tie_ancestors (a way to break the ties it "
+                    "finds)"
+                    if name == "greedy_tie_errors"
+                    else "greedy_smoothing > 0 (it shapes the smoothed greedy choice)"
+                )
                 raise ValueError(
-                    f"TreeConfig.{name} = {value!r} needs greedy_smoothing > 0 (it shapes the "
-                    "smoothed greedy choice), got greedy_smoothing = 0"
+                    f"TreeConfig.{name} = {value!r} needs {how}, got greedy_smoothing = 0"
                 )
             if self.planning != "sweep":
                 raise ValueError(

@@ -125,6 +125,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "greedy_smoothing": (float, int),
     "greedy_smoothing_links": bool,
     "greedy_tie_errors": (float, int, type(None)),
+    "greedy_tie_ancestors": (float, int, type(None)),
     # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)
     "table_cells": (int, type(None)),
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off
@@ -243,6 +244,7 @@ AGENT_ATTRIBUTES = {
     "saved_support",  # read by predict alone (TreeConfig.greedy_min_epochs)
     "saved_errors",  # read by predict alone (TreeConfig.greedy_tie_errors)
     "saved_links",  # read by predict alone (TreeConfig.greedy_smoothing_links)
+    "paired_sums",  # read by predict alone (TreeConfig.greedy_tie_ancestors)
 }
 AGENT_CLASSES: dict[type, tuple[type, set[str]]] = {
     TreeAgent: (PartitionTree, AGENT_ATTRIBUTES),

@@ -18,7 +18,8 @@ class GridAgent(SMDPAgent):
 
     An epoch holds its action while the input stays in one cell (eqs. 9-10 over cells). The
     split fields of ``config`` (and ``table_cells``: the grid's cells are its resolution) are
-    unused; ``optimistic_untried``, which the tree agents implement, is refused.
+    unused; ``optimistic_untried``, which the tree agents implement, and
+    ``greedy_tie_ancestors``, which needs a tree, are refused.
     """
 
     kind = "grid"
@@ -39,6 +40,11 @@ class GridAgent(SMDPAgent):
             raise ValueError(
                 "TreeConfig.optimistic_untried = True is implemented by the tree agents "
                 "(agent.TreeAgent), not GridAgent"
+            )
+        if config is not None and getattr(config, "greedy_tie_ancestors", None) is not None:
+            raise ValueError(
+                f"TreeConfig.greedy_tie_ancestors = {config.greedy_tie_ancestors!r} needs the "
+                "adaptive tree's ancestors (agent.TreeAgent); GridAgent's cells have none"
             )
         super().__init__(observation_space, action_space, exploration, seed, config, bounds)
 

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any, Self
 import numpy as np
 from gymnasium import spaces
 
+from agent.ancestor_ties import PairedSums, ancestors_choice
 from agent.config import TreeConfig
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments
 from agent.exploration import Exploration, make_exploration
@@ -136,6 +137,9 @@ class SMDPAgent:
         """Standard errors a policy-only file was saved with (``TreeConfig.greedy_tie_errors``)."""
         self.saved_links: set[tuple[int, int]] | None = None
         """Leaf links a policy-only file was saved with (``TreeConfig.greedy_smoothing_links``)."""
+        self.paired_sums = PairedSums(self.n_actions)
+        """Per-node sums of ``TreeConfig.greedy_tie_ancestors``, read by ``predict`` alone and
+        dropped after every training episode (:meth:`forget_greedy_sums`)."""
         self.partition: Partition = self._make_partition(low, high)
         if self._track_scale:
             if hasattr(self.partition, "scale"):
@@ -188,6 +192,7 @@ class SMDPAgent:
             for i in range(episodes):
                 obs, _ = env.reset(seed=reset_seed if i == 0 else None)
                 stats = run_episode(env, obs)
+                self.forget_greedy_sums()
                 if self.episodes_done == self.config.novelty_episodes:
                     for member in getattr(self, "members", [self]):  # TreeEnsembleAgent's trees
                         if member._novelty_open(member.episodes_done - 1):  # open until now
@@ -202,7 +207,15 @@ class SMDPAgent:
         finally:
             if sync is not None:
                 sync()
+            self.forget_greedy_sums()
         return history
+
+    def forget_greedy_sums(self) -> None:
+        """Drop ``predict``'s per-node sums (``TreeConfig.greedy_tie_ancestors``) of every tree.
+        :meth:`learn` calls it after every episode and ``split_leaf`` after a split; code that
+        edits Q-bar or the model by hand calls it before the next ``predict``."""
+        for member in getattr(self, "members", [self]):  # TreeEnsembleAgent's trees
+            member.paired_sums.clear()
 
     def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:
         cfg = self.config
@@ -624,12 +637,16 @@ class SMDPAgent:
         ``leaves_at(p)`` gives the leaves of a point and ``row_of(leaves)`` their row."""
         cfg = self.config
         allowed = self._supported(agents, leaves)
-        if cfg.greedy_smoothing == 0.0 or self.holds_one_input(leaves[0]):
+        ancestors = cfg.greedy_tie_ancestors
+        if (cfg.greedy_smoothing == 0.0 and ancestors is None) or self.holds_one_input(leaves[0]):
             return greedy_among(row, allowed)
         if cfg.greedy_tie_errors is not None:
             allowed = self._tied(agents, leaves, row, allowed, cfg.greedy_tie_errors)
             if len(allowed) == 1:
                 return allowed[0]
+        if ancestors is not None:  # greedy_tie_errors is set: allowed holds the tied actions
+            assert allowed is not None
+            return self._ancestors_choice(agents, leaves, allowed, ancestors)
         low, high = self.partition.leaf_bounds(leaves[0])
         h = cfg.greedy_smoothing
         rows = [row]
@@ -651,6 +668,30 @@ class SMDPAgent:
         n = len(rows)
         smoothed = [sum(column) / n for column in zip(*rows, strict=True)]
         return greedy_among(smoothed, allowed)
+
+    def _ancestors_choice(
+        self, agents: Sequence[SMDPAgent], leaves: list[int], tied: list[int], z: float
+    ) -> int:
+        """``TreeConfig.greedy_tie_ancestors``: the tied actions compared in the ancestors of
+        each tree's leaf (:func:`agent.ancestor_ties.ancestors_choice`)."""
+        trees = [agent.tree_structure() for agent in agents]
+
+        def difference(t: int, node: int, a: int, b: int) -> tuple[float, float]:
+            agent = agents[t]
+            sums = agent.paired_sums.at(node, trees[t], agent.q, agent.support)
+            return agent.paired_sums.difference(sums, a, b)
+
+        return ancestors_choice(tied, leaves, lambda t, node: trees[t].parent(node), difference, z)
+
+    def tree_structure(self) -> PartitionTree:
+        """The tree ``TreeConfig.greedy_tie_ancestors`` walks (a ValueError for a partition
+        without ancestors)."""
+        if not isinstance(self.partition, PartitionTree):
+            raise ValueError(
+                "TreeConfig.greedy_tie_ancestors needs the adaptive tree's ancestors; "
+                f"{type(self).__name__}'s partition is a {type(self.partition).__name__}"
+            )
+        return self.partition
 
     def _tied(
         self,
@@ -838,7 +879,7 @@ class SMDPAgent:
             "visits": np.asarray(self.visits, dtype=np.int64),
             **{f"partition.{k}": v for k, v in partition_arrays.items()},
         }
-        if policy_only and self.config.greedy_min_epochs > 0:  # the model is left out
+        if policy_only and self.config.greedy_reads_support:  # the model is left out
             support = [self.support(leaf) for leaf in range(len(self.q))]
             arrays["support"] = np.asarray(support, dtype=np.int64).reshape(len(self.q), -1)
         if policy_only and self.config.greedy_tie_errors is not None:

@@ -187,6 +187,17 @@ class PartitionTree:
     def leaves(self) -> list[int]:
         return [node for node, d in enumerate(self._dim) if d < 0]
 
+    def parent(self, node: int) -> int:
+        """Id of the node that split into ``node`` (-1 for the root)."""
+        return self._parent[node]
+
+    def children(self, node: int) -> tuple[int, int] | None:
+        """Ids of the two halves ``node`` split into (None for a leaf)."""
+        if self._dim[node] < 0:
+            return None
+        first = self._left[node]
+        return first, first + 1
+
     def leaf_bounds(self, leaf: int) -> tuple[list[float], list[float]]:
         return list(self._low[leaf]), list(self._high[leaf])
 

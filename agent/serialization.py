@@ -18,11 +18,12 @@ built from them:
   ``ValueError`` naming the file and the defect.
 
 A *policy-only* file (:data:`LEARNING_ARRAYS` left out) holds what acting needs: the partition,
-Q-bar, counts, the strategy and the generator (and, with ``TreeConfig.greedy_min_epochs``, the
-model's stored-epoch counts, entry ``support``; with ``TreeConfig.greedy_tie_errors`` the
-standard errors, ``errors``; with ``TreeConfig.greedy_smoothing_links`` the linked leaf pairs,
-``links``). Loaded, it acts exactly like the full file; it
-continues learning with empty error buffers, so only the full file resumes training exactly.
+Q-bar, counts, the strategy and the generator (and, with ``TreeConfig.greedy_min_epochs`` or
+``TreeConfig.greedy_tie_ancestors``, the model's stored-epoch counts, entry ``support``; with
+``TreeConfig.greedy_tie_errors`` the standard errors, ``errors``; with
+``TreeConfig.greedy_smoothing_links`` the linked leaf pairs, ``links``). Loaded, it acts exactly
+like the full file; it continues learning with empty error buffers, so only the full file
+resumes training exactly.
 
 This module imports no agent class: the learner (``SMDPAgent.save`` / ``load``) gathers and
 restores its own state and calls these functions for the checked reading and writing.
@@ -425,7 +426,7 @@ def _read_archive(
     policy_only = meta.get("policy_only", False)
     partition_meta = meta["partition"]
     expected = _expected_entries(kind, policy_only, fail)
-    if policy_only and config.greedy_min_epochs > 0:  # the greedy choice's counts
+    if policy_only and config.greedy_reads_support:  # the greedy choice's counts
         expected.append("support")
     if policy_only and config.greedy_tie_errors is not None:  # the greedy choice's ties
         expected.append("errors")

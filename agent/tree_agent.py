@@ -122,4 +122,5 @@ class TreeAgent(SMDPAgent):
         """
         children = self.partition.split(leaf, dim, value)
         self._grow(leaf, children)
+        self.forget_greedy_sums()
         return children

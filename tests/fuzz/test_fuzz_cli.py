@@ -105,6 +105,11 @@ def _cases() -> list[tuple[str, list[str], list[str]]]:
                 "greedy_tie_errors=0.5",  # needs greedy_smoothing > 0 and planning = 'sweep'
                 "greedy_smoothing_links=1",
                 "greedy_smoothing_links=true",  # needs greedy_smoothing > 0
+                "greedy_tie_ancestors=0",
+                "greedy_tie_ancestors=-1",
+                "greedy_tie_ancestors=nan",
+                "greedy_tie_ancestors='1'",
+                "greedy_tie_ancestors=1",  # needs greedy_tie_errors
             ],
         ),
         ("--maze", train, [*TEXT, "nosuch", "/etc/passwd", "missing.toml", "{afile}"]),
