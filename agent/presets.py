@@ -107,7 +107,8 @@ GENERAL = Preset(
     "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs, optimism for "
     "untried actions, a presplit of at most the first 4 of more than 8 inputs, gamma 0.9995 once "
     "every terminal is measured a failure, a greedy choice among actions with two stored epochs "
-    "(one in a table's cell), where neighbouring leaves break the actions' statistical ties",
+    "(one in a table's cell), where the tree's ancestors, compared leaf by leaf, break the "
+    "actions' statistical ties",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -134,9 +135,8 @@ GENERAL = Preset(
         failure_measure="every",
         greedy_min_epochs=2,
         greedy_cell_epochs=1,
-        greedy_smoothing=1.0,
-        greedy_smoothing_links=True,
-        greedy_tie_errors=0.5,
+        greedy_tie_errors=1.0,
+        greedy_tie_ancestors=1.0,
     ),
     "adaptive+tabu",
 )
@@ -157,6 +157,12 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
     23: {"greedy_min_epochs": 0},
     24: {"greedy_min_epochs": 1, "greedy_cell_epochs": None},
     25: {"greedy_smoothing": 0.0, "greedy_smoothing_links": False, "greedy_tie_errors": None},
+    27: {
+        "greedy_smoothing": 1.0,
+        "greedy_smoothing_links": True,
+        "greedy_tie_errors": 0.5,
+        "greedy_tie_ancestors": None,
+    },
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none).
@@ -165,9 +171,9 @@ and presplit into 512 to 65,536 leaves from 9 to 16. Part 18 changed none; part 
 runs whose terminals are measured failures (CartPole's fall, never a goal); part 20 keeps the
 latch shut where any terminal paid more than going on (FrozenLake's goal). Part 21's policy
 splits were adopted on 20 dev seeds and withdrawn on 20 more (docs/paper-notes.md, "Policy
-splits"), so it changed none. Part 22 changed none; parts 23, 24 and 25 change only the
+splits"), so it changed none. Part 22 changed none; parts 23, 24, 25 and 27 change only the
 greedy choice of ``predict``, never a training step (for part 24's, part 23's value of
-``greedy_min_epochs`` is 1)."""
+``greedy_min_epochs`` is 1). Part 26 changed none."""
 
 
 def general_as_of(part: int) -> TreeConfig:

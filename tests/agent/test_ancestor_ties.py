@@ -198,6 +198,7 @@ def test_training_is_the_same_run_and_the_sums_are_dropped_after_each_episode(
     tmp_path: Path,
 ) -> None:
     on = _ancestors_config()
+    assert on == preset("general").config  # part 27's preset
     off = dataclasses.replace(on, greedy_tie_ancestors=None, greedy_smoothing=1.0)
     agents = [_trained(config) for config in (on, off)]
     assert agents[0].q == agents[1].q

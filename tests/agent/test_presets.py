@@ -52,6 +52,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"greedy_min_epochs"}  # issue 9, part 23
     others |= {"greedy_cell_epochs"}  # issue 9, part 24
     others |= {"greedy_smoothing", "greedy_smoothing_links", "greedy_tie_errors"}  # part 25
+    others |= {"greedy_tie_ancestors"}  # part 27
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -71,9 +72,9 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.policy_splits is False  # part 21: withdrawn on more dev seeds
     # parts 23 and 24 ("A greedy choice among supported actions")
     assert (general.greedy_min_epochs, general.greedy_cell_epochs) == (2, 1)
-    # part 25 ("Neighbours break the ties")
-    assert (general.greedy_smoothing, general.greedy_smoothing_links) == (1.0, True)
-    assert general.greedy_tie_errors == 0.5
+    # part 27 ("Ancestors compare leaf by leaf"), in place of part 25's neighbours
+    assert (general.greedy_smoothing, general.greedy_smoothing_links) == (0.0, False)
+    assert (general.greedy_tie_errors, general.greedy_tie_ancestors) == (1.0, 1.0)
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -229,7 +230,15 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(25) == now
+    assert general_as_of(27) == now
+    now = dataclasses.replace(
+        now,
+        greedy_smoothing=1.0,
+        greedy_smoothing_links=True,
+        greedy_tie_errors=0.5,
+        greedy_tie_ancestors=None,
+    )
+    assert general_as_of(26) == general_as_of(25) == now
     now = dataclasses.replace(
         now, greedy_smoothing=0.0, greedy_smoothing_links=False, greedy_tie_errors=None
     )
@@ -291,6 +300,28 @@ def test_greedy_choice_comparisons_set_the_preset_against_the_part_before(
     """Parts 23 and 24 change only the greedy choice: ``general`` is the preset by name
     (today's), and ``general-partN`` the preset of the part before, spelt out field by field."""
     data = tomllib.loads((EXPERIMENT_DIR / f"{prefix}_{name}.toml").read_text())
+    by_name = {s["name"]: s for s in data["strategy"]}
+    assert by_name["general"] == {"name": "general", "preset": "general"}
+    assert _spelt_out(by_name[f"general-part{part}"]) == general_as_of(part)
+    assert data["experiment"]["baseline"] == f"general-part{part}"
+    assert data["experiment"]["seed"] == seed
+
+
+@pytest.mark.parametrize(
+    ("prefix", "part", "seed"),
+    [
+        ("greedy_ties_classic", 24, 25101),
+        ("greedy_ties_mountaincar", 24, 25101),
+        ("greedy_ancestors_classic", 26, 27101),
+        ("greedy_ancestors_mountaincar", 26, 27102),
+    ],
+)
+def test_greedy_tie_comparisons_set_the_preset_against_the_part_before(
+    prefix: str, part: int, seed: int
+) -> None:
+    """Parts 25 and 27: ``general`` is the preset by name, ``general-partN`` the preset of the
+    part before, spelt out field by field; each file's default seed is its fresh set."""
+    data = tomllib.loads((EXPERIMENT_DIR / f"{prefix}.toml").read_text())
     by_name = {s["name"]: s for s in data["strategy"]}
     assert by_name["general"] == {"name": "general", "preset": "general"}
     assert _spelt_out(by_name[f"general-part{part}"]) == general_as_of(part)
