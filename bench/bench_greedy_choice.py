@@ -1,17 +1,20 @@
 """Cost of the greedy choice's options in ``predict``: among supported actions
-(``TreeConfig.greedy_min_epochs`` and ``greedy_cell_epochs``, issue 9, parts 23 and 24) and with
+(``TreeConfig.greedy_min_epochs`` and ``greedy_cell_epochs``, issue 9, parts 23 and 24), with
 neighbours breaking the actions' ties (``greedy_smoothing``, ``greedy_smoothing_links`` and
-``greedy_tie_errors``, part 25).
+``greedy_tie_errors``, part 25) and with the tree's ancestors breaking them
+(``greedy_tie_ancestors``, part 27).
 
-One agent of the general preset learns MountainCar-v0 (and one the ``paper`` maze, and one
-Taxi-v4, whose integer input makes every leaf a single-input cell); then ``predict`` is timed on
-the same random states with the general preset as it was after part 22 (no option), after part
-24 (2 epochs, 1 in a cell) and now (``agent.general_as_of``), in interleaved rounds (CPU time of
-this process). Training is the same either way (the options change no training step), so only
-``predict`` is timed. Prints microseconds per call and the ratios to part 22's (median over
-rounds, with its range). Random states reach leaves the agent barely visited, where most actions
-are statistical ties; so it also times what a user sees, whole greedy episodes (the environment's
-steps included, ``experiments.evaluation.evaluate`` from reset seed 0), per part and round.
+One agent of the general preset learns MountainCar-v0 (and one the ``paper`` maze, and one Taxi-v4,
+whose integer input makes every leaf a single-input cell); then ``predict`` is timed on the same
+random states with the general preset as it was after part 22 (no option), after part 24 (2 epochs,
+1 in a cell), after part 25 (the neighbours) and now (``agent.general_as_of``), in interleaved
+rounds (CPU time of this process). Part 27's per-node sums are dropped before each timing, so every
+round pays for building them, as a first evaluation after training does. Training is the same either
+way (the options change no training step), so only ``predict`` is timed. Prints microseconds per
+call and the ratios to part 22's (median over rounds, with its range). Random states reach leaves
+the agent barely visited, where most actions are statistical ties; so it also times what a user
+sees, whole greedy episodes (the environment's steps included, ``experiments.evaluation.evaluate``
+from reset seed 0), per part and round.
 
     python bench/bench_greedy_choice.py             # 5 rounds, about two minutes
     python bench/bench_greedy_choice.py --rounds 3 --episodes 100
@@ -62,7 +65,12 @@ def main() -> None:
         states = np.random.default_rng(0).uniform(low, high, size=(args.calls, len(low)))
         if np.issubdtype(space.dtype, np.integer):  # type: ignore[arg-type]
             states = np.rint(states).astype(space.dtype)
-        configs = {22: general_as_of(22), 24: general_as_of(24), 25: general.config}
+        configs = {
+            22: general_as_of(22),
+            24: general_as_of(24),
+            25: general_as_of(26),
+            27: general.config,
+        }
         times: dict[int, list[float]] = {part: [] for part in configs}
         episode_ms: dict[int, list[float]] = {part: [] for part in configs}
         steps = dict.fromkeys(configs, 0)
@@ -71,9 +79,11 @@ def main() -> None:
             chosen = {}
             for part, config in configs.items():
                 agent.config = config
+                agent.forget_greedy_sums()
                 start = time.process_time()
                 chosen[part] = [agent.predict(s) for s in states]
                 times[part].append((time.process_time() - start) / args.calls * 1e6)
+                agent.forget_greedy_sums()
                 start = time.process_time()
                 greedy = evaluate(env, agent, args.eval_episodes, seed=0)
                 episode_ms[part].append((time.process_time() - start) / args.eval_episodes * 1e3)
@@ -82,7 +92,7 @@ def main() -> None:
                 changed[part] = sum(a != b for a, b in zip(chosen[22], chosen[part], strict=True))
         agent.config = general.config
         cells, episodes = [], []
-        for part in (24, 25):
+        for part in (24, 25, 27):
             ratios = [new / old for new, old in zip(times[part], times[22], strict=True)]
             cells.append(
                 f"part {part}'s {statistics.median(times[part]):.1f} us, ratio "

@@ -39,7 +39,7 @@ sys.path.insert(0, str(HERE.parents[1] / "issue9_part25_dev"))
 from supported_greedy import greedy_returns  # noqa: E402
 
 import bullet_maze  # noqa: E402, F401
-from agent import general_as_of, preset  # noqa: E402
+from agent import general_as_of  # noqa: E402
 from float_tasks_support import train  # noqa: E402
 from gated_smoothing import maze_run  # noqa: E402
 from tie_gated import smoothed_row  # noqa: E402
@@ -102,7 +102,7 @@ def ancestor_action(
 def choosers(agent):
     """Variant -> (choose(obs), counts)."""
     stats = node_stats(agent)
-    configs = {"leaf": general_as_of(24), "p25": preset("general").config}
+    configs = {"leaf": general_as_of(24), "p25": general_as_of(25)}
     out = {}
     for name in VARIANTS:
         counts: dict = {}
@@ -121,15 +121,18 @@ def choosers(agent):
     return out
 
 
-if __name__ == "__main__":
+def run_probe(choosers_of, argv: list[str]) -> None:
+    """The probe's loop: train each seed (``argv``: TASK OUT SEED...), then score every chooser
+    of ``choosers_of(agent)`` on the same greedy episodes; one JSON line per seed and variant.
+    Part 27's ``tie_strata.py`` runs its own choosers through it."""
     warnings.simplefilter("ignore")
-    task, out = sys.argv[1], Path(sys.argv[2])
-    for seed in map(int, sys.argv[3:]):
+    task, out = argv[1], Path(argv[2])
+    for seed in map(int, argv[3:]):
         if task.startswith("maze:"):
             maze = task[len("maze:"):]
             env, agent = maze_run(maze, seed)
             optimum = env.unwrapped.optimal_steps
-            for name, (choose, counts) in choosers(agent).items():
+            for name, (choose, counts) in choosers_of(agent).items():
                 steps = []
                 for i in range(10):
                     obs, _ = env.reset(seed=10**6 + i)
@@ -144,7 +147,11 @@ if __name__ == "__main__":
             continue
         env, agent, cpu = train(task, seed)
         starts = [1_000_000 + 1000 * seed + i for i in range(20)]
-        for name, (choose, counts) in choosers(agent).items():
+        for name, (choose, counts) in choosers_of(agent).items():
             returns = greedy_returns(agent, env, 0, starts, choose)
             with out.open("a") as f:
                 f.write(json.dumps({"task": task, "seed": seed, "variant": name, "greedy": round(float(np.mean(returns)), 2), "cpu": round(cpu, 1), **counts}) + "\n")
+
+
+if __name__ == "__main__":
+    run_probe(choosers, sys.argv)

@@ -26,11 +26,9 @@ even the root leaves a tie, instead of the root's best among those left (default
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import sys
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -40,11 +38,8 @@ sys.path.insert(0, str(HERE.parents[1] / "issue9_part26_dev"))
 from tie_ancestor import (  # noqa: E402
     ancestor_action,
     general_as_of,
-    greedy_returns,
-    maze_run,
     node_stats,
-    preset,
-    train,
+    run_probe,
 )
 
 VARIANTS = tuple(os.environ.get("VARIANTS", "p25,anc1,str0.5,str1,str2,str3,str5,s0.5_2").split(","))
@@ -120,7 +115,7 @@ def strata_action(
 
 def choosers(agent):
     """Variant -> (choose(obs), counts)."""
-    p25 = preset("general").config
+    p25 = general_as_of(26)  # part 25's preset (the neighbours)
     pooled = node_stats(agent) if any(v.startswith("anc") for v in VARIANTS) else {}
     strata = pair_stats(agent)
     out = {}
@@ -148,29 +143,4 @@ def choosers(agent):
 
 
 if __name__ == "__main__":
-    warnings.simplefilter("ignore")
-    task, out = sys.argv[1], Path(sys.argv[2])
-    for seed in map(int, sys.argv[3:]):
-        if task.startswith("maze:"):
-            maze = task[len("maze:"):]
-            env, agent = maze_run(maze, seed)
-            optimum = env.unwrapped.optimal_steps
-            for name, (choose, counts) in choosers(agent).items():
-                steps = []
-                for i in range(10):
-                    obs, _ = env.reset(seed=10**6 + i)
-                    n, done = 0, False
-                    while not done:
-                        obs, _, term, trunc, _ = env.step(choose(obs))
-                        n += 1
-                        done = term or trunc
-                    steps.append(n)
-                with out.open("a") as f:
-                    f.write(json.dumps({"maze": maze, "seed": seed, "variant": name, "greedy": round(float(np.mean(steps)) / optimum, 3), "capped": sum(s >= 5000 for s in steps), **counts}) + "\n")
-            continue
-        env, agent, cpu = train(task, seed)
-        starts = [1_000_000 + 1000 * seed + i for i in range(20)]
-        for name, (choose, counts) in choosers(agent).items():
-            returns = greedy_returns(agent, env, 0, starts, choose)
-            with out.open("a") as f:
-                f.write(json.dumps({"task": task, "seed": seed, "variant": name, "greedy": round(float(np.mean(returns)), 2), "cpu": round(cpu, 1), **counts}) + "\n")
+    run_probe(choosers, sys.argv)
