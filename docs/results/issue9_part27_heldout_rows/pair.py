@@ -1,12 +1,12 @@
-"""Part 27's held-out rows: each run of today's preset (the tree's ancestors, compared leaf by
-leaf, break the greedy choice's ties: ``greedy_tie_errors`` 1, ``greedy_tie_ancestors`` 1)
-paired with the run of part 25's preset (``general_as_of(26)``, the neighbours) with the same run
-seed. Training must be the same run (the training CSVs' SHA-256 in the sidecars equal; a pair
-that differs stops the script), and only the greedy evaluation differs. Prints, per fresh seed
-set and task, runs at the target, means and per-run returns (both arms in one folder: 27101's
-three tasks, 27102's to 27105's MountainCar); totals with a sign count and a bootstrap interval;
-then the maze suite's test split (seed 14102), today's runs against part 25's stored ones, by
-geometric-mean greedy steps over the optimum.
+"""Part 27's held-out rows: each run of today's preset (the tree's ancestors, compared leaf by leaf,
+break the greedy choice's ties: ``greedy_tie_errors`` 1, ``greedy_tie_ancestors`` 1) paired with the
+run of part 25's preset (``general_as_of(26)``, the neighbours) with the same run seed. Training
+must be the same run (the training CSVs' SHA-256 in the sidecars equal; a pair that differs stops
+the script), and only the greedy evaluation differs. Prints, per fresh seed set and task, runs at
+the target, means and per-run returns (both arms in one folder: 27101's and 27106's three tasks,
+27102's to 27105's MountainCar); totals with a sign count and a bootstrap interval; then the maze
+suite's test split (seed 14102), today's runs against part 25's stored ones, by geometric-mean
+greedy steps over the optimum.
 
     python pair.py            (from anywhere; reads ../issue9_part2[57]_heldout_*)
 """
@@ -34,6 +34,7 @@ FRESH = (
     (27103, "issue9_part27_heldout_mountaincar_seed27103", ("MountainCar-v0",)),
     (27104, "issue9_part27_heldout_mountaincar_seed27104", ("MountainCar-v0",)),
     (27105, "issue9_part27_heldout_mountaincar_seed27105", ("MountainCar-v0",)),
+    (27106, "issue9_part27_heldout_classic_seed27106", tuple(TARGET)),
 )
 
 
