@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from gymnasium import spaces
 
-from agent import TreeAgent, TreeConfig, preset
+from agent import TreeAgent, TreeConfig, general_as_of, preset
 from agent.smdp import greedy_among
 from agent.tree_ensemble import TreeEnsembleAgent
 
@@ -96,8 +96,8 @@ def test_training_is_the_same_run(tmp_path: Path) -> None:
 
 def _trained(k: int) -> TreeEnsembleAgent:
     env = gym.make("MountainCar-v0")
-    general = preset("general")
-    config = dataclasses.replace(general.config, greedy_min_epochs=k, greedy_cell_epochs=None)
+    general = preset("general")  # part 24's rule alone: no tie-break reads the counts
+    config = dataclasses.replace(general_as_of(24), greedy_min_epochs=k, greedy_cell_epochs=None)
     agent = TreeEnsembleAgent(
         env.observation_space, env.action_space, general.make_exploration(), 3, config
     )
