@@ -45,8 +45,11 @@ def sign_p(higher: int, lower: int) -> float:
     return min(1.0, 2 * tail)
 
 
-def compare(label: str, task: str, new: dict, old: dict) -> tuple[list[float], list[float]]:
-    """Print one set's pairs; return (part 24's, part 25's) greedy means by run seed."""
+def compare(
+    label: str, task: str, new: dict, old: dict, names: tuple[str, str] = ("part 24", "part 25")
+) -> tuple[list[float], list[float]]:
+    """Print one set's pairs; return (part 24's, part 25's) greedy means by run seed (``names``:
+    the two arms' labels; part 27's script reuses it)."""
     assert set(new) == set(old) and len(new) == 10, (label, task, len(new), len(old))
     differ = [seed for seed in sorted(new) if new[seed][0] != old[seed][0]]
     assert not differ, f"{label} {task}: training differs from the stored run on runs {differ}"
@@ -54,20 +57,22 @@ def compare(label: str, task: str, new: dict, old: dict) -> tuple[list[float], l
     olds = [old[s][1] for s in sorted(old)]
     news = [new[s][1] for s in sorted(new)]
     print(
-        f"{label} {task}: part 24 {sum(v >= target for v in olds)} of 10, mean "
-        f"{sum(olds) / 10:.1f}; part 25 {sum(v >= target for v in news)} of 10, mean "
+        f"{label} {task}: {names[0]} {sum(v >= target for v in olds)} of 10, mean "
+        f"{sum(olds) / 10:.1f}; {names[1]} {sum(v >= target for v in news)} of 10, mean "
         f"{sum(news) / 10:.1f}; runs higher / lower "
         f"{sum(b > a for a, b in zip(olds, news))} / {sum(b < a for a, b in zip(olds, news))}"
     )
-    print("   part 24:", [round(v, 1) for v in olds])
-    print("   part 25:", [round(v, 1) for v in news])
+    print(f"   {names[0]}:", [round(v, 1) for v in olds])
+    print(f"   {names[1]}:", [round(v, 1) for v in news])
     return olds, news
 
 
-def mazes() -> None:
-    """The maze suite's test split (seed 14102): part 24's runs against part 25's."""
-    new_folder = RESULTS / "issue9_part25_heldout_mazes_seed14102"
-    old_folder = RESULTS / "issue9_part24_heldout_mazes_seed14102"
+def mazes(
+    new_folder: Path = RESULTS / "issue9_part25_heldout_mazes_seed14102",
+    old_folder: Path = RESULTS / "issue9_part24_heldout_mazes_seed14102",
+) -> None:
+    """The maze suite's test split (seed 14102): the old part's runs against the new one's
+    (part 24's against part 25's; part 27's script passes its own folders)."""
     if not new_folder.exists():
         return
     logs: dict[str, list[float]] = {"old": [], "new": []}

@@ -19,26 +19,31 @@ TARGET = {"MountainCar-v0": -110.0, "Acrobot-v1": -100.0, "CartPole-v1": 475.0}
 def main() -> None:
     for name in ("ta_mc", "ta_ac", "ta_cp", "tb_mc", "tb_ac"):
         path = HERE / f"{name}.jsonl"
-        if not path.exists():
-            continue
-        rows = [json.loads(line) for line in path.open()]
-        task = rows[0]["task"]
-        by = {}
-        for r in rows:
-            by.setdefault(r["variant"], {})[r["seed"]] = r["greedy"]
-        base = by["p25"]
-        for variant, runs in by.items():
-            seeds = sorted(set(runs) & set(base))
-            higher = sum(runs[s] > base[s] for s in seeds)
-            lower = sum(runs[s] < base[s] for s in seeds)
-            print(
-                f"{task} {variant}: {len(seeds)} seeds, mean {statistics.mean(runs[s] for s in seeds):.2f}, "
-                f"at target {sum(runs[s] >= TARGET[task] for s in seeds)}; vs p25 higher {higher}, lower {lower}"
-            )
+        if path.exists():
+            classic(path)
     for path in (HERE / "ta_maze.jsonl", HERE / "tb_maze.jsonl"):
         if path.exists():
             mazes(path)
     acrobot_longer()
+
+
+def classic(path: Path) -> None:
+    """Each variant of one task's file: mean greedy return, runs at the target, and runs higher
+    / lower than ``p25`` (part 27's summary reuses it)."""
+    rows = [json.loads(line) for line in path.open()]
+    task = rows[0]["task"]
+    by: dict[str, dict[int, float]] = {}
+    for r in rows:
+        by.setdefault(r["variant"], {})[r["seed"]] = r["greedy"]
+    base = by["p25"]
+    for variant, runs in by.items():
+        seeds = sorted(set(runs) & set(base))
+        higher = sum(runs[s] > base[s] for s in seeds)
+        lower = sum(runs[s] < base[s] for s in seeds)
+        print(
+            f"{task} {variant}: {len(seeds)} seeds, mean {statistics.mean(runs[s] for s in seeds):.2f}, "
+            f"at target {sum(runs[s] >= TARGET[task] for s in seeds)}; vs p25 higher {higher}, lower {lower}"
+        )
 
 
 def mazes(path: Path) -> None:

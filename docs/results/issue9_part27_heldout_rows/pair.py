@@ -14,7 +14,6 @@ greedy steps over the optimum.
 from __future__ import annotations
 
 import importlib.util
-import math
 from pathlib import Path
 
 import numpy as np
@@ -26,8 +25,22 @@ _SPEC = importlib.util.spec_from_file_location(
 assert _SPEC is not None and _SPEC.loader is not None
 _PART25 = importlib.util.module_from_spec(_SPEC)
 _SPEC.loader.exec_module(_PART25)
-runs, maze_runs = _PART25.runs, _PART25.maze_runs
-wilson, sign_p, TARGET = _PART25.wilson, _PART25.sign_p, _PART25.TARGET
+runs, wilson, sign_p, TARGET = _PART25.runs, _PART25.wilson, _PART25.sign_p, _PART25.TARGET
+NAMES = ("part 25", "part 27")
+
+
+def compare(label: str, task: str, new: dict, old: dict) -> tuple[list[float], list[float]]:
+    """Part 25's pairing of one set (training equal run by run), with this part's labels."""
+    return _PART25.compare(label, task, new, old, NAMES)
+
+
+def mazes() -> None:
+    """The maze suite's test split (seed 14102): part 25's stored runs against part 27's."""
+    new_folder = RESULTS / "issue9_part27_heldout_mazes_seed14102"
+    if not new_folder.exists():
+        print("mazes: not run")
+        return
+    _PART25.mazes(new_folder, RESULTS / "issue9_part25_heldout_mazes_seed14102")
 FRESH = (
     (27101, "issue9_part27_heldout_classic_seed27101", tuple(TARGET)),
     (27102, "issue9_part27_heldout_mountaincar_seed27102", ("MountainCar-v0",)),
@@ -36,57 +49,6 @@ FRESH = (
     (27105, "issue9_part27_heldout_mountaincar_seed27105", ("MountainCar-v0",)),
     (27106, "issue9_part27_heldout_classic_seed27106", tuple(TARGET)),
 )
-
-
-def compare(label: str, task: str, new: dict, old: dict) -> tuple[list[float], list[float]]:
-    """Print one set's pairs; return (part 25's, part 27's) greedy means by run seed."""
-    assert set(new) == set(old) and len(new) == 10, (label, task, len(new), len(old))
-    differ = [seed for seed in sorted(new) if new[seed][0] != old[seed][0]]
-    assert not differ, f"{label} {task}: training differs between the arms on runs {differ}"
-    target = TARGET[task]
-    olds = [old[s][1] for s in sorted(old)]
-    news = [new[s][1] for s in sorted(new)]
-    print(
-        f"{label} {task}: part 25 {sum(v >= target for v in olds)} of 10, mean "
-        f"{sum(olds) / 10:.1f}; part 27 {sum(v >= target for v in news)} of 10, mean "
-        f"{sum(news) / 10:.1f}; runs higher / lower "
-        f"{sum(b > a for a, b in zip(olds, news))} / {sum(b < a for a, b in zip(olds, news))}"
-    )
-    print("   part 25:", [round(v, 1) for v in olds])
-    print("   part 27:", [round(v, 1) for v in news])
-    return olds, news
-
-
-def mazes() -> None:
-    """The maze suite's test split (seed 14102): part 25's runs against part 27's."""
-    new_folder = RESULTS / "issue9_part27_heldout_mazes_seed14102"
-    old_folder = RESULTS / "issue9_part25_heldout_mazes_seed14102"
-    if not new_folder.exists():
-        print("mazes: not run")
-        return
-    logs: dict[str, list[float]] = {"old": [], "new": []}
-    for layout in sorted(p.name for p in (old_folder / "runs").iterdir()):
-        new, old = maze_runs(new_folder, layout), maze_runs(old_folder, layout)
-        if len(new) < len(old):
-            print(f"mazes {layout}: not finished")
-            continue
-        for seed in sorted(old):
-            assert new[seed][0] == old[seed][0], f"mazes {layout} run {seed}: training differs"
-            print(
-                f"mazes {layout} run {seed}: greedy {old[seed][1]:.3f}x ({old[seed][2]} of "
-                f"{old[seed][3]} capped) -> {new[seed][1]:.3f}x ({new[seed][2]} capped)"
-            )
-            logs["old"].append(math.log(old[seed][1]))
-            logs["new"].append(math.log(new[seed][1]))
-    if logs["old"]:
-        gm = {k: math.exp(sum(v) / len(v)) for k, v in logs.items()}
-        pairs = list(zip(logs["old"], logs["new"], strict=True))
-        better = sum(b < a - 1e-12 for a, b in pairs)
-        worse = sum(b > a + 1e-12 for a, b in pairs)
-        print(
-            f"mazes: geometric-mean greedy steps / optimum {gm['old']:.3f} -> {gm['new']:.3f}; "
-            f"runs better {better}, worse {worse}, level {len(pairs) - better - worse}"
-        )
 
 
 def main() -> None:
