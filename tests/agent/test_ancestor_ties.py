@@ -290,3 +290,14 @@ def test_a_setting_from_a_file_is_checked_strictly() -> None:
         config_from_data({**base, "greedy_tie_ancestors": -2}, "where.toml")
     loaded = config_from_data({**base, "greedy_tie_ancestors": 2}, "x")
     assert loaded.greedy_tie_ancestors == 2
+
+
+def test_a_policy_only_file_without_its_counts_is_refused_by_name(tmp_path: Path) -> None:
+    agent, _ = _four_leaves(greedy_min_epochs=0)
+    path = agent.save(tmp_path / "policy.npz", policy_only=True)
+    with np.load(path) as data:
+        arrays = {k: data[k] for k in data.files if k != "support"}
+    np.savez(tmp_path / "bad.npz", **arrays)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=r"bad\.npz") as refused:
+        TreeAgent.load(tmp_path / "bad.npz")
+    assert "support" in str(refused.value)
