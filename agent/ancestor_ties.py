@@ -116,12 +116,11 @@ def ancestors_choice(
         if all(up < 0 for up in ups):
             break
         nodes = [node if up < 0 else up for node, up in zip(nodes, ups, strict=True)]
-        diff = {
-            (a, b): _combined([difference(t, node, a, b) for t, node in enumerate(nodes)])
-            for a in tied
-            for b in tied
-            if a != b
-        }
+        diff: dict[tuple[int, int], tuple[float, float]] = {}
+        for i, a in enumerate(tied):  # each pair once; the reverse is its negation
+            for b in tied[i + 1 :]:
+                mean, se = _combined([difference(t, node, a, b) for t, node in enumerate(nodes)])
+                diff[(a, b)], diff[(b, a)] = (mean, se), (-mean, se)
         score = {a: sum(diff[(a, b)][0] for b in tied if b != a) for a in tied}
         best = max(tied, key=score.__getitem__)
         kept = [best]
