@@ -245,6 +245,7 @@ AGENT_ATTRIBUTES = {
     "saved_errors",  # read by predict alone (TreeConfig.greedy_tie_errors)
     "saved_links",  # read by predict alone (TreeConfig.greedy_smoothing_links)
     "paired_sums",  # read by predict alone (TreeConfig.greedy_tie_ancestors)
+    "leaf_errors",  # read by predict alone (TreeConfig.greedy_tie_errors)
 }
 AGENT_CLASSES: dict[type, tuple[type, set[str]]] = {
     TreeAgent: (PartitionTree, AGENT_ATTRIBUTES),

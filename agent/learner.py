@@ -139,7 +139,11 @@ class SMDPAgent:
         """Leaf links a policy-only file was saved with (``TreeConfig.greedy_smoothing_links``)."""
         self.paired_sums = PairedSums(self.n_actions)
         """Per-node sums of ``TreeConfig.greedy_tie_ancestors``, read by ``predict`` alone and
-        dropped after every training episode (:meth:`forget_greedy_sums`)."""
+        dropped after every training episode (:meth:`forget_greedy_cache`)."""
+        self.leaf_errors: dict[int, list[float]] = {}
+        """Each leaf's :meth:`action_errors` as ``predict`` last computed them
+        (``TreeConfig.greedy_tie_errors``), read by ``predict`` alone and dropped with the sums
+        (:meth:`forget_greedy_cache`)."""
         self.partition: Partition = self._make_partition(low, high)
         if self._track_scale:
             if hasattr(self.partition, "scale"):
@@ -192,7 +196,7 @@ class SMDPAgent:
             for i in range(episodes):
                 obs, _ = env.reset(seed=reset_seed if i == 0 else None)
                 stats = run_episode(env, obs)
-                self.forget_greedy_sums()
+                self.forget_greedy_cache()
                 if self.episodes_done == self.config.novelty_episodes:
                     for member in getattr(self, "members", [self]):  # TreeEnsembleAgent's trees
                         if member._novelty_open(member.episodes_done - 1):  # open until now
@@ -207,15 +211,18 @@ class SMDPAgent:
         finally:
             if sync is not None:
                 sync()
-            self.forget_greedy_sums()
+            self.forget_greedy_cache()
         return history
 
-    def forget_greedy_sums(self) -> None:
-        """Drop ``predict``'s per-node sums (``TreeConfig.greedy_tie_ancestors``) of every tree.
-        :meth:`learn` calls it after every episode and ``split_leaf`` after a split; code that
-        edits Q-bar or the model by hand calls it before the next ``predict``."""
+    def forget_greedy_cache(self) -> None:
+        """Drop what ``predict`` caches between calls, in every tree: the per-node sums of
+        ``TreeConfig.greedy_tie_ancestors`` and the leaves' standard errors of
+        ``TreeConfig.greedy_tie_errors``. :meth:`learn` calls it after every episode and
+        ``split_leaf`` after a split; code that edits Q-bar or the model by hand calls it
+        before the next ``predict``."""
         for member in getattr(self, "members", [self]):  # TreeEnsembleAgent's trees
             member.paired_sums.clear()
+            member.leaf_errors.clear()
 
     def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:
         cfg = self.config
@@ -704,7 +711,7 @@ class SMDPAgent:
         """``TreeConfig.greedy_tie_errors``: the allowed actions whose Q-bar in ``row`` lies
         within ``z`` combined standard errors of the greedy action's (that action first)."""
         best = greedy_among(row, allowed)
-        each = [agent.action_errors(leaf) for agent, leaf in zip(agents, leaves, strict=True)]
+        each = [agent.cached_errors(leaf) for agent, leaf in zip(agents, leaves, strict=True)]
         errors = [sum(column) / len(each) for column in zip(*each, strict=True)]
         candidates = range(self.n_actions) if allowed is None else allowed
         tied = [best]
@@ -712,6 +719,14 @@ class SMDPAgent:
             if a != best and abs(row[best] - row[a]) <= z * math.hypot(errors[best], errors[a]):
                 tied.append(a)
         return tied
+
+    def cached_errors(self, leaf: int) -> list[float]:
+        """:meth:`action_errors` of ``leaf``, computed once until :meth:`forget_greedy_cache`
+        (``predict`` alone reads them; values or a model edited by hand need that call)."""
+        errors = self.leaf_errors.get(leaf)
+        if errors is None:
+            errors = self.leaf_errors[leaf] = self.action_errors(leaf)
+        return errors
 
     def action_errors(self, leaf: int) -> list[float]:
         """The standard error of each action's Q-bar in ``leaf`` (``LeafModel.errors``); for a

@@ -122,5 +122,5 @@ class TreeAgent(SMDPAgent):
         """
         children = self.partition.split(leaf, dim, value)
         self._grow(leaf, children)
-        self.forget_greedy_sums()
+        self.forget_greedy_cache()
         return children

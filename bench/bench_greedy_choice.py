@@ -8,8 +8,10 @@ One agent of the general preset learns MountainCar-v0 (and one the ``paper`` maz
 whose integer input makes every leaf a single-input cell); then ``predict`` is timed on the same
 random states with the general preset as it was after part 22 (no option), after part 24 (2 epochs,
 1 in a cell), after part 25 (the neighbours) and now (``agent.general_as_of``), in interleaved
-rounds (CPU time of this process). Part 27's per-node sums are dropped before each timing, so every
-round pays for building them, as a first evaluation after training does. Training is the same either
+rounds (CPU time of this process). What ``predict`` caches (part 27's per-node sums, part 28's leaf
+standard errors) is dropped before each timing, so every round pays for building it, as a first
+evaluation after training does; today's preset is also timed with the standard errors recomputed at
+every call (``27-uncached``, ``predict`` before part 28's cache). Training is the same either
 way (the options change no training step), so only ``predict`` is timed. Prints microseconds per
 call and the ratios to part 22's (median over rounds, with its range). Random states reach leaves
 the agent barely visited, where most actions are statistical ties; so it also times what a user
@@ -30,7 +32,7 @@ import gymnasium as gym
 import numpy as np
 
 import bullet_maze  # noqa: F401 (registers BulletMaze-v0)
-from agent import adapt_env, general_as_of, preset
+from agent import TreeConfig, adapt_env, general_as_of, preset
 from agent.tree_ensemble import tree_agent_class
 from experiments.evaluation import evaluate
 
@@ -65,25 +67,30 @@ def main() -> None:
         states = np.random.default_rng(0).uniform(low, high, size=(args.calls, len(low)))
         if np.issubdtype(space.dtype, np.integer):  # type: ignore[arg-type]
             states = np.rint(states).astype(space.dtype)
-        configs = {
+        configs: dict[int | str, TreeConfig] = {
             22: general_as_of(22),
             24: general_as_of(24),
             25: general_as_of(26),
             27: general.config,
+            "27-uncached": general.config,
         }
-        times: dict[int, list[float]] = {part: [] for part in configs}
-        episode_ms: dict[int, list[float]] = {part: [] for part in configs}
+        times: dict[int | str, list[float]] = {part: [] for part in configs}
+        episode_ms: dict[int | str, list[float]] = {part: [] for part in configs}
         steps = dict.fromkeys(configs, 0)
-        changed = {part: 0 for part in configs}
+        changed = dict.fromkeys(configs, 0)
         for _ in range(args.rounds):
             chosen = {}
             for part, config in configs.items():
                 agent.config = config
-                agent.forget_greedy_sums()
+                if part == "27-uncached":  # every call computes the leaf's errors afresh
+                    agent.cached_errors = agent.action_errors  # type: ignore[method-assign]
+                elif "cached_errors" in vars(agent):
+                    del agent.cached_errors
+                agent.forget_greedy_cache()
                 start = time.process_time()
                 chosen[part] = [agent.predict(s) for s in states]
                 times[part].append((time.process_time() - start) / args.calls * 1e6)
-                agent.forget_greedy_sums()
+                agent.forget_greedy_cache()
                 start = time.process_time()
                 greedy = evaluate(env, agent, args.eval_episodes, seed=0)
                 episode_ms[part].append((time.process_time() - start) / args.eval_episodes * 1e3)
@@ -91,8 +98,10 @@ def main() -> None:
             for part in configs:
                 changed[part] = sum(a != b for a, b in zip(chosen[22], chosen[part], strict=True))
         agent.config = general.config
+        if "cached_errors" in vars(agent):
+            del agent.cached_errors
         cells, episodes = [], []
-        for part in (24, 25, 27):
+        for part in (24, 25, "27-uncached", 27):
             ratios = [new / old for new, old in zip(times[part], times[22], strict=True)]
             cells.append(
                 f"part {part}'s {statistics.median(times[part]):.1f} us, ratio "
@@ -115,6 +124,16 @@ def main() -> None:
             f"{task}: a greedy episode with the environment's steps: part 22's "
             f"{statistics.median(episode_ms[22]):.2f} ms "
             f"({steps[22] / args.eval_episodes:.0f} steps); " + "; ".join(episodes)
+        )
+        cache = [
+            statistics.median(
+                new / old for new, old in zip(series[27], series["27-uncached"], strict=True)
+            )
+            for series in (times, episode_ms)
+        ]
+        print(
+            f"{task}: part 28's cache of the leaves' errors: predict {cache[0]:.3f}x and a greedy "
+            f"episode {cache[1]:.3f}x the time without it (median over rounds)"
         )
         env.close()
 

@@ -81,21 +81,21 @@ def test_the_nearest_ancestor_that_separates_the_actions_decides() -> None:
     _terminal_epochs(agent.model, leaves[1], 1, [0.0])
     # the parent: differences -0.05 and 1, mean 0.475, se 0.525: still tied, and the root has
     # no more shared leaves, so its best among them (action 0, by the mean) is chosen
-    agent.forget_greedy_sums()  # Q-bar and the model were edited by hand
+    agent.forget_greedy_cache()  # Q-bar and the model were edited by hand
     assert agent.predict(state) == 0
     agent.q[leaves[1]] = [0.45, 0.5]
-    agent.forget_greedy_sums()  # Q-bar and the model were edited by hand
+    agent.forget_greedy_cache()  # Q-bar and the model were edited by hand
     assert agent.predict(state) == 1
     for leaf in leaves[2:]:  # the root's other leaves prefer 0 by 1 each
         agent.q[leaf] = [1.0, 0.0]
         _terminal_epochs(agent.model, leaf, 0, [0.0])
         _terminal_epochs(agent.model, leaf, 1, [0.0])
     # parent: two -0.05s, se 0 but mean negative: action 1 leads by 0.05 > 1 * 0: decides 1
-    agent.forget_greedy_sums()  # Q-bar and the model were edited by hand
+    agent.forget_greedy_cache()  # Q-bar and the model were edited by hand
     assert agent.predict(state) == 1
     agent.q[leaves[1]] = [0.5, 0.45]  # the parent now sees -0.05 and +0.05: tied (mean 0)
     # the root: -0.05, 0.05, 1, 1: mean 0.5, se 0.29: action 0 leads by more than one error
-    agent.forget_greedy_sums()  # Q-bar and the model were edited by hand
+    agent.forget_greedy_cache()  # Q-bar and the model were edited by hand
     assert agent.predict(state) == 0
     assert agent.leaf_info(leaves[0]).greedy == 1  # the leaf's own choice is reported unchanged
 
@@ -211,6 +211,46 @@ def test_training_is_the_same_run_and_the_sums_are_dropped_after_each_episode(
     assert not agent.paired_sums._sums  # dropped after the last episode
     fresh = TreeEnsembleAgent.load(agent.save(tmp_path / "full.npz"))
     assert [agent.predict(s) for s in STATES] == [fresh.predict(s) for s in STATES]
+
+
+def test_the_leaves_errors_are_cached_until_learn_or_a_split() -> None:
+    agent = _trained(_ancestors_config())
+    cached = [agent.predict(s) for s in STATES]  # fills the cache of the leaves' errors
+    assert agent.leaf_errors
+    for leaf, errors in agent.leaf_errors.items():
+        assert errors == agent.action_errors(leaf)
+    uncached = []
+    for s in STATES:  # the same choices when every call computes its errors afresh
+        agent.forget_greedy_cache()
+        uncached.append(agent.predict(s))
+    assert cached == uncached
+    agent.learn(gym.make("MountainCar-v0"), 1)
+    assert not agent.leaf_errors  # dropped after the episode
+    assert not agent.paired_sums._sums
+    agent.predict(STATES[0])
+    leaf = agent.leaf_of(STATES[0])
+    assert leaf in agent.leaf_errors
+    agent.split_leaf(leaf, 0, float(np.mean(agent.partition.leaf_bounds(leaf)[0:2], axis=0)[0]))
+    assert not agent.leaf_errors  # a split drops it
+
+
+def test_a_hand_edit_needs_forget_greedy_cache() -> None:
+    agent, leaves = _four_leaves()
+    x = np.array([0.1])
+    assert agent.model is not None
+    _terminal_epochs(agent.model, leaves[1], 0, [0.0])  # a sibling where action 0 leads
+    _terminal_epochs(agent.model, leaves[1], 1, [0.0])
+    agent.q[leaves[1]] = [1.0, 0.0]
+    assert agent.predict(x) == 0  # tied in the leaf (se 1): the ancestors lean to action 0
+    assert agent.leaf_errors[leaves[0]] == [1.0, 1.0]
+    _terminal_epochs(agent.model, leaves[0], 1, [0.0] * 200)  # action 1's spread collapses
+    _terminal_epochs(agent.model, leaves[0], 0, [0.0] * 200)
+    agent.q[leaves[0]] = [0.0, 0.5]
+    assert agent.leaf_errors[leaves[0]] == [1.0, 1.0]  # the cache still holds the old errors
+    agent.forget_greedy_cache()
+    assert agent.predict(x) == 1  # separated now: the leaf's own best
+    assert agent.leaf_errors[leaves[0]] == agent.action_errors(leaves[0])
+    assert max(agent.leaf_errors[leaves[0]]) < 0.1
 
 
 def test_a_policy_only_file_acts_like_the_full_one(tmp_path: Path) -> None:
