@@ -144,6 +144,12 @@ class SMDPAgent:
         """Each leaf's :meth:`action_errors` as ``predict`` last computed them
         (``TreeConfig.greedy_tie_errors``), read by ``predict`` alone and dropped with the sums
         (:meth:`forget_greedy_cache`)."""
+        self.leaf_choices: dict[tuple[int, ...], int] = {}
+        """``predict``'s greedy action per leaf (per tuple of the trees' leaves) where it depends
+        on the leaf alone (``TreeConfig.greedy_tie_errors`` set, ``greedy_smoothing`` 0), for
+        the configuration in ``_choices_config``; dropped with the sums
+        (:meth:`forget_greedy_cache`) and when ``config`` is replaced."""
+        self._choices_config: TreeConfig | None = None
         self.partition: Partition = self._make_partition(low, high)
         if self._track_scale:
             if hasattr(self.partition, "scale"):
@@ -223,6 +229,7 @@ class SMDPAgent:
         for member in getattr(self, "members", [self]):  # TreeEnsembleAgent's trees
             member.paired_sums.clear()
             member.leaf_errors.clear()
+            member.leaf_choices.clear()
 
     def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:
         cfg = self.config
@@ -642,6 +649,31 @@ class SMDPAgent:
         (``TreeConfig.greedy_min_epochs``), or with ``TreeConfig.greedy_smoothing`` over the
         smoothed row, among the tied actions of ``TreeConfig.greedy_tie_errors``.
         ``leaves_at(p)`` gives the leaves of a point and ``row_of(leaves)`` their row."""
+        cfg = self.config
+        if cfg.greedy_smoothing == 0.0 and cfg.greedy_tie_errors is not None:
+            # the choice reads the leaves alone (not where in them x lies): kept per leaf
+            if self._choices_config is not cfg:
+                self.leaf_choices.clear()
+                self._choices_config = cfg
+            key = tuple(leaves)
+            choice = self.leaf_choices.get(key)
+            if choice is None:
+                choice = self._fresh_choice(x, agents, leaves, row, leaves_at, row_of)
+                self.leaf_choices[key] = choice
+            return choice
+        return self._fresh_choice(x, agents, leaves, row, leaves_at, row_of)
+
+    def _fresh_choice(
+        self,
+        x: list[float],
+        agents: Sequence[SMDPAgent],
+        leaves: list[int],
+        row: list[float],
+        leaves_at: Callable[[list[float]], list[int]],
+        row_of: Callable[[list[int]], list[float]],
+    ) -> int:
+        """:meth:`_greedy_choice` computed afresh (``x``, ``leaves_at`` and ``row_of`` are read
+        by ``greedy_smoothing`` alone)."""
         cfg = self.config
         allowed = self._supported(agents, leaves)
         ancestors = cfg.greedy_tie_ancestors

@@ -8,12 +8,13 @@ One agent of the general preset learns MountainCar-v0 (and one the ``paper`` maz
 whose integer input makes every leaf a single-input cell); then ``predict`` is timed on the same
 random states with the general preset as it was after part 22 (no option), after part 24 (2 epochs,
 1 in a cell), after part 25 (the neighbours) and now (``agent.general_as_of``), in interleaved
-rounds (CPU time of this process). What ``predict`` caches (part 27's per-node sums, part 28's leaf
-standard errors) is dropped before each timing, so every round pays for building it, as a first
-evaluation after training does; today's preset is also timed with the standard errors recomputed at
-every call (``27-uncached``, ``predict`` before part 28's cache). Training is the same either
-way (the options change no training step), so only ``predict`` is timed. Prints microseconds per
-call and the ratios to part 22's (median over rounds, with its range). Random states reach leaves
+rounds (CPU time of this process). What ``predict`` caches (part 27's per-node sums, part 28's
+choices and leaf standard errors) is dropped before each timing, so every round pays for building
+it, as a first evaluation after training does; today's preset is also timed with its choice and
+the standard errors computed afresh at every call (``27-uncached``: ``predict`` before part 28's
+caches). Training is the same either way (the options change no training step), so only
+``predict`` is timed. Prints microseconds per call and the ratios to part 22's (median over
+rounds, with its range). Random states reach leaves
 the agent barely visited, where most actions are statistical ties; so it also times what a user
 sees, whole greedy episodes (the environment's steps included, ``experiments.evaluation.evaluate``
 from reset seed 0), per part and round.
@@ -41,6 +42,12 @@ TASKS = {
     "BulletMaze-v0": {"maze": "paper", "max_episode_steps": 5000},
     "Taxi-v4": {},
 }
+
+
+def _restore_caches(agent: object) -> None:
+    """Undo the ``27-uncached`` round's overrides (the class's cached methods again)."""
+    for name in ("cached_errors", "_greedy_choice"):
+        vars(agent).pop(name, None)
 
 
 def main() -> None:
@@ -82,10 +89,11 @@ def main() -> None:
             chosen = {}
             for part, config in configs.items():
                 agent.config = config
-                if part == "27-uncached":  # every call computes the leaf's errors afresh
+                if part == "27-uncached":  # every call computes its choice and errors afresh
                     agent.cached_errors = agent.action_errors  # type: ignore[method-assign]
-                elif "cached_errors" in vars(agent):
-                    del agent.cached_errors
+                    agent._greedy_choice = agent._fresh_choice  # type: ignore[method-assign]
+                else:
+                    _restore_caches(agent)
                 agent.forget_greedy_cache()
                 start = time.process_time()
                 chosen[part] = [agent.predict(s) for s in states]
@@ -98,8 +106,7 @@ def main() -> None:
             for part in configs:
                 changed[part] = sum(a != b for a, b in zip(chosen[22], chosen[part], strict=True))
         agent.config = general.config
-        if "cached_errors" in vars(agent):
-            del agent.cached_errors
+        _restore_caches(agent)
         cells, episodes = [], []
         for part in (24, 25, "27-uncached", 27):
             ratios = [new / old for new, old in zip(times[part], times[22], strict=True)]
@@ -132,7 +139,7 @@ def main() -> None:
             for series in (times, episode_ms)
         ]
         print(
-            f"{task}: part 28's cache of the leaves' errors: predict {cache[0]:.3f}x and a greedy "
+            f"{task}: part 28's caches (choices and errors): predict {cache[0]:.3f}x and a greedy "
             f"episode {cache[1]:.3f}x the time without it (median over rounds)"
         )
         env.close()

@@ -213,9 +213,9 @@ def test_training_is_the_same_run_and_the_sums_are_dropped_after_each_episode(
     assert [agent.predict(s) for s in STATES] == [fresh.predict(s) for s in STATES]
 
 
-def test_the_leaves_errors_are_cached_until_learn_or_a_split() -> None:
+def test_the_leaves_errors_and_choices_are_cached_until_learn_or_a_split() -> None:
     agent = _trained(_ancestors_config())
-    cached = [agent.predict(s) for s in STATES]  # fills the cache of the leaves' errors
+    cached = [agent.predict(s) for s in STATES]  # fills the caches of errors and choices
     assert agent.leaf_errors
     for leaf, errors in agent.leaf_errors.items():
         assert errors == agent.action_errors(leaf)
@@ -224,14 +224,21 @@ def test_the_leaves_errors_are_cached_until_learn_or_a_split() -> None:
         agent.forget_greedy_cache()
         uncached.append(agent.predict(s))
     assert cached == uncached
+    [agent.predict(s) for s in STATES]
+    assert len(agent.leaf_choices) == len({agent.leaf_of(s) for s in STATES})  # one per leaf
+    agent.config = dataclasses.replace(agent.config)  # an equal config, but a new object
+    agent.predict(STATES[0])
+    assert len(agent.leaf_choices) == 1  # a replaced config starts the choices afresh
     agent.learn(gym.make("MountainCar-v0"), 1)
     assert not agent.leaf_errors  # dropped after the episode
+    assert not agent.leaf_choices
     assert not agent.paired_sums._sums
     agent.predict(STATES[0])
     leaf = agent.leaf_of(STATES[0])
     assert leaf in agent.leaf_errors
     agent.split_leaf(leaf, 0, float(np.mean(agent.partition.leaf_bounds(leaf)[0:2], axis=0)[0]))
-    assert not agent.leaf_errors  # a split drops it
+    assert not agent.leaf_errors  # a split drops them
+    assert not agent.leaf_choices
 
 
 def test_a_hand_edit_needs_forget_greedy_cache() -> None:
@@ -247,6 +254,7 @@ def test_a_hand_edit_needs_forget_greedy_cache() -> None:
     _terminal_epochs(agent.model, leaves[0], 0, [0.0] * 200)
     agent.q[leaves[0]] = [0.0, 0.5]
     assert agent.leaf_errors[leaves[0]] == [1.0, 1.0]  # the cache still holds the old errors
+    assert agent.predict(x) == 0  # and the old choice
     agent.forget_greedy_cache()
     assert agent.predict(x) == 1  # separated now: the leaf's own best
     assert agent.leaf_errors[leaves[0]] == agent.action_errors(leaves[0])
