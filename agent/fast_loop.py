@@ -246,7 +246,7 @@ AGENT_ATTRIBUTES = {
     "saved_links",  # read by predict alone (TreeConfig.greedy_smoothing_links)
     "paired_sums",  # read by predict alone (TreeConfig.greedy_tie_ancestors)
     "leaf_errors",  # read by predict alone (TreeConfig.greedy_tie_errors)
-    "leaf_choices",  # read by predict alone (TreeConfig.greedy_tie_errors)
+    "leaf_choices",  # read by predict alone (TreeConfig.greedy_tie_ancestors)
     "_choices_config",  # the configuration leaf_choices were made under
 }
 AGENT_CLASSES: dict[type, tuple[type, set[str]]] = {

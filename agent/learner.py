@@ -145,9 +145,9 @@ class SMDPAgent:
         (``TreeConfig.greedy_tie_errors``), read by ``predict`` alone and dropped with the sums
         (:meth:`forget_greedy_cache`)."""
         self.leaf_choices: dict[tuple[int, ...], int] = {}
-        """``predict``'s greedy action per leaf (per tuple of the trees' leaves) where it depends
-        on the leaf alone (``TreeConfig.greedy_tie_errors`` set, ``greedy_smoothing`` 0), for
-        the configuration in ``_choices_config``; dropped with the sums
+        """``predict``'s greedy action per leaf (per tuple of the trees' leaves) under
+        ``TreeConfig.greedy_tie_ancestors``, which reads the leaf alone, for the configuration
+        in ``_choices_config``; dropped with the sums
         (:meth:`forget_greedy_cache`) and when ``config`` is replaced."""
         self._choices_config: TreeConfig | None = None
         self.partition: Partition = self._make_partition(low, high)
@@ -650,42 +650,25 @@ class SMDPAgent:
         smoothed row, among the tied actions of ``TreeConfig.greedy_tie_errors``.
         ``leaves_at(p)`` gives the leaves of a point and ``row_of(leaves)`` their row."""
         cfg = self.config
-        if cfg.greedy_smoothing == 0.0 and cfg.greedy_tie_errors is not None:
-            # the choice reads the leaves alone (not where in them x lies): kept per leaf
+        ancestors = cfg.greedy_tie_ancestors
+        if ancestors is not None:  # (with greedy_tie_errors and no smoothing, as TreeConfig asks)
+            # the choice reads the leaves alone, not where in them x lies: kept per leaf
             if self._choices_config is not cfg:
                 self.leaf_choices.clear()
                 self._choices_config = cfg
             key = tuple(leaves)
             choice = self.leaf_choices.get(key)
             if choice is None:
-                choice = self._fresh_choice(x, agents, leaves, row, leaves_at, row_of)
+                choice = self._ancestors_rule(agents, leaves, row, ancestors)
                 self.leaf_choices[key] = choice
             return choice
-        return self._fresh_choice(x, agents, leaves, row, leaves_at, row_of)
-
-    def _fresh_choice(
-        self,
-        x: list[float],
-        agents: Sequence[SMDPAgent],
-        leaves: list[int],
-        row: list[float],
-        leaves_at: Callable[[list[float]], list[int]],
-        row_of: Callable[[list[int]], list[float]],
-    ) -> int:
-        """:meth:`_greedy_choice` computed afresh (``x``, ``leaves_at`` and ``row_of`` are read
-        by ``greedy_smoothing`` alone)."""
-        cfg = self.config
         allowed = self._supported(agents, leaves)
-        ancestors = cfg.greedy_tie_ancestors
-        if (cfg.greedy_smoothing == 0.0 and ancestors is None) or self.holds_one_input(leaves[0]):
+        if cfg.greedy_smoothing == 0.0 or self.holds_one_input(leaves[0]):
             return greedy_among(row, allowed)
         if cfg.greedy_tie_errors is not None:
             allowed = self._tied(agents, leaves, row, allowed, cfg.greedy_tie_errors)
             if len(allowed) == 1:
                 return allowed[0]
-        if ancestors is not None:  # greedy_tie_errors is set: allowed holds the tied actions
-            assert allowed is not None
-            return self._ancestors_choice(agents, leaves, allowed, ancestors)
         low, high = self.partition.leaf_bounds(leaves[0])
         h = cfg.greedy_smoothing
         rows = [row]
@@ -707,6 +690,22 @@ class SMDPAgent:
         n = len(rows)
         smoothed = [sum(column) / n for column in zip(*rows, strict=True)]
         return greedy_among(smoothed, allowed)
+
+    def _ancestors_rule(
+        self, agents: Sequence[SMDPAgent], leaves: list[int], row: list[float], z: float
+    ) -> int:
+        """``TreeConfig.greedy_tie_ancestors``' greedy action for the trees' ``leaves`` (``row``
+        their Q-bar row), computed afresh: the best allowed action, unless others are tied with
+        it (``greedy_tie_errors``); then the ancestors choose among them."""
+        allowed = self._supported(agents, leaves)
+        if self.holds_one_input(leaves[0]):
+            return greedy_among(row, allowed)
+        z_leaf = self.config.greedy_tie_errors
+        assert z_leaf is not None  # TreeConfig refuses greedy_tie_ancestors without it
+        tied = self._tied(agents, leaves, row, allowed, z_leaf)
+        if len(tied) == 1:
+            return tied[0]
+        return self._ancestors_choice(agents, leaves, tied, z)
 
     def _ancestors_choice(
         self, agents: Sequence[SMDPAgent], leaves: list[int], tied: list[int], z: float

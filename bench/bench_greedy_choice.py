@@ -28,6 +28,7 @@ from __future__ import annotations
 import argparse
 import statistics
 import time
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
@@ -42,6 +43,18 @@ TASKS = {
     "BulletMaze-v0": {"maze": "paper", "max_episode_steps": 5000},
     "Taxi-v4": {},
 }
+
+
+def _bypass_caches(agent: Any) -> None:
+    """``27-uncached``: ``predict`` as before part 28, every choice and standard error computed
+    afresh (instance attributes over the class's cached methods)."""
+    z = agent.config.greedy_tie_ancestors
+
+    def choice(x: Any, agents: Any, leaves: Any, row: Any, *_: Any) -> int:
+        return int(agent._ancestors_rule(agents, leaves, row, z))
+
+    agent.cached_errors = agent.action_errors
+    agent._greedy_choice = choice
 
 
 def _restore_caches(agent: object) -> None:
@@ -90,8 +103,7 @@ def main() -> None:
             for part, config in configs.items():
                 agent.config = config
                 if part == "27-uncached":  # every call computes its choice and errors afresh
-                    agent.cached_errors = agent.action_errors  # type: ignore[method-assign]
-                    agent._greedy_choice = agent._fresh_choice  # type: ignore[method-assign]
+                    _bypass_caches(agent)
                 else:
                     _restore_caches(agent)
                 agent.forget_greedy_cache()
