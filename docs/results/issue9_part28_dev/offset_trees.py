@@ -8,6 +8,7 @@ tree's ancestors. Does the trade still hold? Today's preset with the overrides i
 
     OVERRIDES='{"ensemble_trees": 2, "ensemble_decisions": "first"}' \
         python offset_trees.py TASK OUT LABEL SEED [SEED ...]
+        python offset_trees.py maze:LAYOUT OUT LABEL SEED [SEED ...]
 """
 
 from __future__ import annotations
@@ -31,6 +32,35 @@ from agent import adapt_env, preset  # noqa: E402
 from agent.tree_ensemble import tree_agent_class  # noqa: E402
 
 
+def maze_row(maze: str, seed: int, label: str, config, out: Path) -> None:
+    """Part 23's maze protocol (``maze_support.py``): 12 blocks of 50 episodes, first reset of
+    block b seeded seed * 1000 + b; 10 greedy episodes from reset seeds 10^6 + i."""
+    env = gym.make("BulletMaze-v0", maze=maze, max_episode_steps=5000)
+    general = preset("general")
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, general.make_exploration(), seed, config
+    )
+    start = time.process_time()
+    steps = []
+    for block in range(12):
+        steps += [h.steps for h in agent.learn(env, 50, reset_seed=seed * 1000 + block)]
+    cpu = time.process_time() - start
+    optimum = env.unwrapped.optimal_steps
+    greedy = []
+    for i in range(10):
+        obs, _ = env.reset(seed=10**6 + i)
+        n, done = 0, False
+        while not done:
+            obs, _, term, trunc, _ = env.step(agent.predict(obs))
+            n += 1
+            done = term or trunc
+        greedy.append(n)
+    train = np.asarray(steps, dtype=float)
+    row = {"maze": maze, "seed": seed, "variant": label, "greedy": round(float(np.mean(greedy)) / optimum, 3), "capped": sum(g >= 5000 for g in greedy), "auc": round(float(train.mean()) / optimum, 3), "final": round(float(train[-100:].mean()) / optimum, 3), "cpu": round(cpu, 1)}
+    with out.open("a") as f:
+        f.write(json.dumps(row) + "\n")
+
+
 def main(argv: list[str]) -> None:
     warnings.simplefilter("ignore")
     task, out, label = argv[1], Path(argv[2]), argv[3]
@@ -38,6 +68,9 @@ def main(argv: list[str]) -> None:
     general = preset("general")
     config = dataclasses.replace(general.config, **overrides)
     for seed in map(int, argv[4:]):
+        if task.startswith("maze:"):
+            maze_row(task[len("maze:") :], seed, label, config, out)
+            continue
         env = adapt_env(gym.make(task))
         agent = tree_agent_class(config)(
             env.observation_space, env.action_space, general.make_exploration(), seed, config
