@@ -221,9 +221,9 @@ class SMDPAgent:
         return history
 
     def forget_greedy_cache(self) -> None:
-        """Drop what ``predict`` caches between calls, in every tree: the per-node sums of
-        ``TreeConfig.greedy_tie_ancestors`` and the leaves' standard errors of
-        ``TreeConfig.greedy_tie_errors``. :meth:`learn` calls it after every episode and
+        """Drop what ``predict`` caches between calls, in every tree: the per-node sums and the
+        per-leaf choices of ``TreeConfig.greedy_tie_ancestors`` and the leaves' standard errors
+        of ``TreeConfig.greedy_tie_errors``. :meth:`learn` calls it after every episode and
         ``split_leaf`` after a split; code that edits Q-bar or the model by hand calls it
         before the next ``predict``."""
         for member in getattr(self, "members", [self]):  # TreeEnsembleAgent's trees
@@ -647,7 +647,8 @@ class SMDPAgent:
         """``predict``'s greedy action: eq. (11) over ``row`` (the Q-bar row of ``leaves``,
         ``agents[i]``'s leaf ``leaves[i]`` holding ``x``) among the allowed actions
         (``TreeConfig.greedy_min_epochs``), or with ``TreeConfig.greedy_smoothing`` over the
-        smoothed row, among the tied actions of ``TreeConfig.greedy_tie_errors``.
+        smoothed row, among the tied actions of ``TreeConfig.greedy_tie_errors``; with
+        ``TreeConfig.greedy_tie_ancestors``, :meth:`_ancestors_rule`, kept per leaf.
         ``leaves_at(p)`` gives the leaves of a point and ``row_of(leaves)`` their row."""
         cfg = self.config
         ancestors = cfg.greedy_tie_ancestors
