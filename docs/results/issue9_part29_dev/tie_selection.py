@@ -8,7 +8,9 @@ do (part 28's ``train_ties.py`` rule), with z 1 and z 2 in alternate episodes (z
 more than two standard errors of the difference; otherwise z 1, today's.
 
 Every run is scored three ways on the same training: ``z1`` and ``z2`` (``predict`` at each
-width) and ``sel`` (the width chosen).
+width) and ``sel`` (the width chosen). Round 6 (``SELECT_GREEDY=1``): in the selection episodes
+the agent acts by ``predict``'s rule at the episode's z, the strategy not asked (it still
+learns from them).
 
     python tie_selection.py TASK OUT SEED [SEED ...]         (1,000 episodes, 20 greedy)
     python tie_selection.py maze:LAYOUT OUT SEED [SEED ...]  (12 blocks of 50, 10 greedy)
@@ -19,6 +21,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import os
 import sys
 import time
 import warnings
@@ -37,6 +40,7 @@ from supported_greedy import greedy_returns  # noqa: E402
 
 WIDTHS = (1.0, 2.0)
 MARGIN = 2.0  # standard errors of the difference
+GREEDY = os.environ.get("SELECT_GREEDY") == "1"
 
 
 def selecting_agent(env, seed: int, start: int):
@@ -55,6 +59,14 @@ def selecting_agent(env, seed: int, start: int):
     def select(leaf, row, rng):
         action = original(leaf, row, rng)
         z = state["z"]
+        if z is not None and GREEDY:  # round 6: the selection episodes act by predict's rule
+            allowed = [a for a in range(agent.n_actions) if agent.support(leaf)[a] >= k]
+            if not allowed:
+                return max(range(agent.n_actions), key=row.__getitem__)
+            tied = agent._tied(agent.members, [leaf], row, allowed, z)
+            if len(tied) < 2:
+                return tied[0]
+            return agent._ancestors_choice(agent.members, [leaf], tied, z)
         if z is None or strategy.explored:
             return action
         support = agent.support(leaf)
