@@ -41,6 +41,7 @@ from supported_greedy import greedy_returns  # noqa: E402
 WIDTHS = (1.0, 2.0)
 MARGIN = 2.0  # standard errors of the difference
 GREEDY = os.environ.get("SELECT_GREEDY") == "1"
+FRACTION = float(os.environ.get("SELECT_FRACTION", "0.1"))  # round 7: 0.5
 
 
 def selecting_agent(env, seed: int, start: int):
@@ -126,7 +127,7 @@ def main(argv: list[str]) -> None:
         else:
             env = adapt_env(gym.make(task))
             total, blocks = 1000, [(1000, seed)]
-        agent, callback, returns = selecting_agent(env, seed, total - total // 10)
+        agent, callback, returns = selecting_agent(env, seed, total - round(total * FRACTION))
         start = time.process_time()
         steps: list[int] = []
         for count, reset_seed in blocks:
