@@ -57,7 +57,7 @@ def mazes() -> None:
         print(f"mazes {arm}: geometric mean {geo:.3f} ({geo / base:.3f} of str1's), runs with a capped episode {capped}, better {better}, worse {worse}")
     print(f"mazes chose z 2 on {sum(r['chosen'] == 2.0 for r, _ in pairs)} of {n}")
     for r, b in pairs:
-        print(f"   {r['task'][5:]} {r['seed']}: str1 {b}, z1 {r['z1']}, z2 {r['z2']}, sel {r['sel']} (chose {r['chosen']}; final {r['final']})")
+        print(f"   {r['task'][5:]} {r['seed']}: str1 {b}, z1 {r['z1']}, z2 {r['z2']}, sel {r['sel']} (chose {r['chosen']})")
 
 
 if __name__ == "__main__":
