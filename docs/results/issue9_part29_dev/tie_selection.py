@@ -41,6 +41,7 @@ from supported_greedy import greedy_returns  # noqa: E402
 WIDTHS = (1.0, 2.0)
 MARGIN = 2.0  # standard errors of the difference
 GREEDY = os.environ.get("SELECT_GREEDY") == "1"
+PLAIN_Z1 = os.environ.get("SELECT_Z1_PLAIN") == "1"  # round 8
 FRACTION = float(os.environ.get("SELECT_FRACTION", "0.1"))  # round 7: 0.5
 
 
@@ -68,8 +69,8 @@ def selecting_agent(env, seed: int, start: int):
             if len(tied) < 2:
                 return tied[0]
             return agent._ancestors_choice(agent.members, [leaf], tied, z)
-        if z is None or strategy.explored:
-            return action
+        if z is None or strategy.explored or (PLAIN_Z1 and z == WIDTHS[0]):
+            return action  # (round 8: the z 1 episodes choose as today's training does)
         support = agent.support(leaf)
         if support[action] < k:
             return action
