@@ -312,6 +312,19 @@ class TreeConfig:
     ancestors at the same height are asked together (means averaged over the trees, standard errors
     combined). Needs a tree, reads only Q-bar and the stored-epoch counts (which a policy-only file
     keeps). None: off."""
+    greedy_tie_trial: float | None = None
+    """With ``greedy_tie_ancestors`` (beyond the paper; :mod:`agent.tie_trial`): a wider tie
+    width z' that the run tries. From episode ``greedy_tie_trial_episodes`` on, every second
+    episode breaks its greedy choices' ties at z' (the others train as without it), and
+    ``predict`` uses z' for the leaf's test and the ancestors' only while those episodes' mean
+    return exceeds the others' by more than ``greedy_tie_trial_margin`` standard errors. Runs
+    the tree ensemble's loop. None: off."""
+    greedy_tie_trial_episodes: int = 300
+    """``greedy_tie_trial``: the episode (0-based, over the agent's life) from which the
+    episodes alternate."""
+    greedy_tie_trial_margin: float = 2.0
+    """``greedy_tie_trial``: how many standard errors of the difference the trial episodes'
+    mean return must exceed the plain ones' by."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -664,6 +677,40 @@ class TreeConfig:
         ``greedy_tie_ancestors``), which a policy-only file then keeps."""
         return self.greedy_min_epochs > 0 or self.greedy_tie_ancestors is not None
 
+    def _check_tie_trial(self) -> None:
+        trial = self.greedy_tie_trial
+        start = self.greedy_tie_trial_episodes
+        if isinstance(start, bool) or not isinstance(start, int) or start < 0:
+            raise ValueError(
+                f"TreeConfig.greedy_tie_trial_episodes must be an int >= 0, got {start!r}"
+            )
+        margin = self.greedy_tie_trial_margin
+        if (
+            isinstance(margin, bool)
+            or not isinstance(margin, int | float)
+            or not math.isfinite(margin)
+            or margin < 0
+        ):
+            raise ValueError(
+                f"TreeConfig.greedy_tie_trial_margin must be a finite number >= 0, got {margin!r}"
+            )
+        if trial is None:
+            return
+        if (
+            isinstance(trial, bool)
+            or not isinstance(trial, int | float)
+            or not math.isfinite(trial)
+            or trial <= 0
+        ):
+            raise ValueError(
+                f"TreeConfig.greedy_tie_trial must be a number > 0 or None, got {trial!r}"
+            )
+        if self.greedy_tie_ancestors is None:
+            raise ValueError(
+                f"TreeConfig.greedy_tie_trial = {trial!r} needs greedy_tie_ancestors (the ties "
+                "it widens are those the ancestors break), got greedy_tie_ancestors = None"
+            )
+
     def _check_greedy_smoothing(self) -> None:
         h = self.greedy_smoothing
         if (
@@ -706,6 +753,7 @@ class TreeConfig:
                     f"TreeConfig.greedy_tie_ancestors = {za!r} and greedy_smoothing = {h!r} "
                     "are two ways to break the same ties: set greedy_smoothing = 0"
                 )
+        self._check_tie_trial()
         for name, on in (
             ("greedy_smoothing_links", self.greedy_smoothing_links),
             ("greedy_tie_errors", z is not None),
@@ -829,6 +877,7 @@ LOOP_OPTIONS: dict[str, Any] = {
     "model_lambda": 0.0,
     "collision_splits": False,
     "failure_gamma": None,
+    "greedy_tie_trial": None,
 }
 """Each ``TreeConfig`` option that only the tree ensemble's loop runs, with its off value."""
 

@@ -126,6 +126,10 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "greedy_smoothing_links": bool,
     "greedy_tie_errors": (float, int, type(None)),
     "greedy_tie_ancestors": (float, int, type(None)),
+    # makes the agent a TreeEnsembleAgent, whose class turns the loop off
+    "greedy_tie_trial": (type(None),),
+    "greedy_tie_trial_episodes": int,
+    "greedy_tie_trial_margin": (float, int),
     # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)
     "table_cells": (int, type(None)),
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off
@@ -248,6 +252,8 @@ AGENT_ATTRIBUTES = {
     "leaf_errors",  # read by predict alone (TreeConfig.greedy_tie_errors)
     "leaf_choices",  # read by predict alone (TreeConfig.greedy_tie_ancestors)
     "_choices_config",  # the configuration leaf_choices were made under
+    "_choices_widths",  # the tie widths leaf_choices were made at
+    "tie_trial",  # None here: TreeConfig.greedy_tie_trial makes a TreeEnsembleAgent
 }
 AGENT_CLASSES: dict[type, tuple[type, set[str]]] = {
     TreeAgent: (PartitionTree, AGENT_ATTRIBUTES),

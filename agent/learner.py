@@ -33,6 +33,7 @@ from agent.random_stream import UniformStream
 from agent.scale import ReturnScale, ReturnSpread, RewardScale
 from agent.smdp import epoch_discounts, epoch_returns, greedy_among, leaf_update
 from agent.spaces import action_count, integer_inputs, observation_bounds
+from agent.tie_trial import TieTrial
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -150,6 +151,19 @@ class SMDPAgent:
         in ``_choices_config``; dropped with the sums
         (:meth:`forget_greedy_cache`) and when ``config`` is replaced."""
         self._choices_config: TreeConfig | None = None
+        self._choices_widths: tuple[float, float] | None = None
+        self.tie_trial: TieTrial | None = None
+        """``TreeConfig.greedy_tie_trial``'s returns and the widths ``predict`` uses (None:
+        off)."""
+        if cfg.greedy_tie_trial is not None:
+            assert cfg.greedy_tie_errors is not None
+            assert cfg.greedy_tie_ancestors is not None
+            self.tie_trial = TieTrial(
+                (cfg.greedy_tie_errors, cfg.greedy_tie_ancestors),
+                cfg.greedy_tie_trial,
+                cfg.greedy_tie_trial_episodes,
+                cfg.greedy_tie_trial_margin,
+            )
         self.partition: Partition = self._make_partition(low, high)
         if self._track_scale:
             if hasattr(self.partition, "scale"):
@@ -648,19 +662,21 @@ class SMDPAgent:
         ``agents[i]``'s leaf ``leaves[i]`` holding ``x``) among the allowed actions
         (``TreeConfig.greedy_min_epochs``), or with ``TreeConfig.greedy_smoothing`` over the
         smoothed row, among the tied actions of ``TreeConfig.greedy_tie_errors``; with
-        ``TreeConfig.greedy_tie_ancestors``, :meth:`_ancestors_rule`, kept per leaf.
+        ``TreeConfig.greedy_tie_ancestors``, :meth:`_ancestors_rule`, kept per leaf (at the
+        widths of ``TreeConfig.greedy_tie_trial`` when it is on, :meth:`tie_widths`).
         ``leaves_at(p)`` gives the leaves of a point and ``row_of(leaves)`` their row."""
         cfg = self.config
-        ancestors = cfg.greedy_tie_ancestors
-        if ancestors is not None:  # (with greedy_tie_errors and no smoothing, as TreeConfig asks)
+        if cfg.greedy_tie_ancestors is not None:  # (with greedy_tie_errors, no smoothing)
             # the choice reads the leaves alone, not where in them x lies: kept per leaf
-            if self._choices_config is not cfg:
+            widths = self.tie_widths()
+            if self._choices_config is not cfg or self._choices_widths != widths:
                 self.leaf_choices.clear()
                 self._choices_config = cfg
+                self._choices_widths = widths
             key = tuple(leaves)
             choice = self.leaf_choices.get(key)
             if choice is None:
-                choice = self._ancestors_rule(agents, leaves, row, ancestors)
+                choice = self._ancestors_rule(agents, leaves, row, widths)
                 self.leaf_choices[key] = choice
             return choice
         allowed = self._supported(agents, leaves)
@@ -692,21 +708,35 @@ class SMDPAgent:
         smoothed = [sum(column) / n for column in zip(*rows, strict=True)]
         return greedy_among(smoothed, allowed)
 
+    def tie_widths(self) -> tuple[float, float]:
+        """The widths of ``predict``'s tie tests now, (leaf, ancestors): those of
+        ``TreeConfig.greedy_tie_errors`` and ``greedy_tie_ancestors``, or the trial width while
+        ``TreeConfig.greedy_tie_trial`` adopts it (:class:`agent.tie_trial.TieTrial`)."""
+        if self.tie_trial is not None:
+            return self.tie_trial.widths()
+        cfg = self.config
+        if cfg.greedy_tie_errors is None or cfg.greedy_tie_ancestors is None:
+            raise ValueError("tie_widths needs greedy_tie_errors and greedy_tie_ancestors")
+        return cfg.greedy_tie_errors, cfg.greedy_tie_ancestors
+
     def _ancestors_rule(
-        self, agents: Sequence[SMDPAgent], leaves: list[int], row: list[float], z: float
+        self,
+        agents: Sequence[SMDPAgent],
+        leaves: list[int],
+        row: list[float],
+        widths: tuple[float, float],
     ) -> int:
         """``TreeConfig.greedy_tie_ancestors``' greedy action for the trees' ``leaves`` (``row``
         their Q-bar row), computed afresh: the best allowed action, unless others are tied with
-        it (``greedy_tie_errors``); then the ancestors choose among them."""
+        it (``greedy_tie_errors``, at ``widths[0]``); then the ancestors choose among them (at
+        ``widths[1]``)."""
         allowed = self._supported(agents, leaves)
         if self.holds_one_input(leaves[0]):
             return greedy_among(row, allowed)
-        z_leaf = self.config.greedy_tie_errors
-        assert z_leaf is not None  # TreeConfig refuses greedy_tie_ancestors without it
-        tied = self._tied(agents, leaves, row, allowed, z_leaf)
+        tied = self._tied(agents, leaves, row, allowed, widths[0])
         if len(tied) == 1:
             return tied[0]
-        return self._ancestors_choice(agents, leaves, tied, z)
+        return self._ancestors_choice(agents, leaves, tied, widths[1])
 
     def _ancestors_choice(
         self, agents: Sequence[SMDPAgent], leaves: list[int], tied: list[int], z: float
@@ -890,6 +920,8 @@ class SMDPAgent:
             "rng": self.uniform.state(),
             "partition": partition_meta,
         }
+        if self.tie_trial is not None:  # predict reads it: kept in a policy-only file too
+            metadata["tie_trial"] = self.tie_trial.state()
         if policy_only:
             metadata["policy_only"] = True
         else:
@@ -1005,6 +1037,13 @@ class SMDPAgent:
                     agent.partition.scale = agent.scale
             strategy.load_state_dict(saved.exploration_state)
             agent.uniform.restore(saved.rng)
+            if (agent.tie_trial is None) != (saved.tie_trial is None):
+                raise ValueError(
+                    "metadata tie_trial must be present exactly when config.greedy_tie_trial "
+                    f"is set (greedy_tie_trial = {saved.config.greedy_tie_trial!r})"
+                )
+            if agent.tie_trial is not None:
+                agent.tie_trial.restore(saved.tie_trial, "metadata tie_trial")
             learner = saved.learner or {}
             if "scale" in learner:
                 agent.scale.restore(learner["scale"])

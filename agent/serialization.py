@@ -119,9 +119,10 @@ _METADATA_KEYS = {
     "rng",
     "partition",
 }
-_OPTIONAL_METADATA_KEYS = {"policy_only", "learner"}
+_OPTIONAL_METADATA_KEYS = {"policy_only", "learner", "tie_trial"}
 """``learner``: the learner's own state beyond the paper (the measured reward unit of
-``TreeConfig.threshold_units="scale"``, the model of ``planning="sweep"``), when it has any."""
+``TreeConfig.threshold_units="scale"``, the model of ``planning="sweep"``), when it has any.
+``tie_trial``: the returns of ``TreeConfig.greedy_tie_trial`` (policy-only files too)."""
 
 
 # --- settings -----------------------------------------------------------------------------
@@ -353,6 +354,8 @@ class SavedAgent:
     policy_only: bool
     learner: dict[str, Any] | None = None
     """The learner's state beyond the paper (``scale``, ``model``), if the file has any."""
+    tie_trial: Any = None
+    """``TreeConfig.greedy_tie_trial``'s moments, unchecked (the learner checks them)."""
     support: np.ndarray | None = None
     """A policy-only file's stored-epoch counts per (leaf, action), which the greedy choice of
     ``TreeConfig.greedy_min_epochs`` reads in place of the model (None otherwise)."""
@@ -519,6 +522,7 @@ def _read_archive(
         visits=visits,
         policy_only=policy_only,
         learner=meta.get("learner"),
+        tie_trial=meta.get("tie_trial"),
         support=support,
         errors=errors,
         links=links,

@@ -432,9 +432,13 @@ class TreeEnsembleAgent(TreeAgent):
         )
 
         first_only = cfg.ensemble_decisions == "first"
+        trial = self.tie_trial is not None and self.tie_trial.tries(self.episodes_done)
         x = [float(v) for v in obs]
         leaves = self._leaves(x)
-        action = strategy.select(leaves[0], self.mean_row(leaves), rng)
+        row = self.mean_row(leaves)
+        action = strategy.select(leaves[0], row, rng)
+        if trial:
+            action = self._trial_choice(leaves, row, action)
         hold = hold_exploration and strategy.explored
         self._explored = strategy.explored
         eps_sum = strategy.epsilon(leaves[0])
@@ -511,7 +515,10 @@ class TreeEnsembleAgent(TreeAgent):
                     hold = False
                     self._explored = False
                 else:
-                    action = strategy.select(leaves[0], self.mean_row(leaves), rng)
+                    row = self.mean_row(leaves)
+                    action = strategy.select(leaves[0], row, rng)
+                    if trial:
+                        action = self._trial_choice(leaves, row, action)
                     hold = hold_exploration and strategy.explored
                     self._explored = strategy.explored
                 eps_sum += strategy.epsilon(leaves[0])
@@ -539,8 +546,39 @@ class TreeEnsembleAgent(TreeAgent):
             epochs=epochs,
             mean_epsilon=eps_sum / epochs,
         )
+        if self.tie_trial is not None:
+            self.tie_trial.record(self.episodes_done, total)
         self.episodes_done += 1
         return stats
+
+    def _trial_choice(self, leaves: list[int], row: list[float], action: int) -> int:
+        """``TreeConfig.greedy_tie_trial`` in a trial episode: the strategy's ``action`` for the
+        trees' ``leaves`` (``row`` their mean Q-bar row), or, where it was a greedy choice that
+        ``predict`` would test for ties, the choice of ``predict``'s rule at the trial width z'
+        (:mod:`agent.tie_trial`). The choice stands when the strategy explored, when the leaf
+        holds one input (a table's cell, which ``predict`` does not test), when the action has
+        fewer than max(``greedy_min_epochs``, 1) stored epochs in some tree's leaf, or when no
+        other such action is off the strategy's list. Otherwise the actions tied with the best
+        of those within z' standard errors (``greedy_tie_errors``' test) are compared by the
+        ancestors at z' (``greedy_tie_ancestors``). The standard errors and the ancestors' sums
+        are read as ``predict`` caches them, afresh after each episode and each split."""
+        trial = self.tie_trial
+        assert trial is not None
+        if self.exploration.explored or self.holds_one_input(leaves[0]):
+            return action
+        least = max(self.config.greedy_min_epochs, 1)
+        each = [m.support(leaf) for m, leaf in zip(self.members, leaves, strict=True)]
+        counts = [min(column) for column in zip(*each, strict=True)]
+        if counts[action] < least:
+            return action
+        listed = self.exploration.listed(leaves[0])
+        allowed = [a for a, c in enumerate(counts) if c >= least and a not in listed]
+        if action not in allowed or len(allowed) < 2:
+            return action
+        tied = self._tied(self.members, leaves, row, allowed, trial.trial)
+        if len(tied) < 2:
+            return action
+        return self._ancestors_choice(self.members, leaves, tied, trial.trial)
 
 
 def tree_agent_class(config: TreeConfig) -> type[TreeAgent]:

@@ -91,6 +91,10 @@ class Exploration:
         self.explored = False
         return greedy_action(q_row, rng)
 
+    def listed(self, leaf: int) -> frozenset[int]:
+        """The actions the strategy keeps off in ``leaf`` (a tabu list's); none here."""
+        return frozenset()
+
     def update(self, leaf: int, action: int, delta_q: float) -> None:
         """After eq. (10) changed Q-bar(leaf, action) by ``delta_q``."""
 

@@ -93,6 +93,10 @@ class Tabu(Exploration):
         """The listed (leaf, action) pairs, oldest first."""
         return list(self._fifo)
 
+    def listed(self, leaf: int) -> frozenset[int]:
+        """The actions listed in ``leaf`` now (those :meth:`select` keeps off)."""
+        return frozenset(self._by_leaf.get(leaf, ()))
+
     def bind(self, n_actions: int) -> None:
         super().bind(n_actions)
         self.base.bind(n_actions)
