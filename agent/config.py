@@ -314,17 +314,22 @@ class TreeConfig:
     keeps). None: off."""
     greedy_tie_trial: float | None = None
     """With ``greedy_tie_ancestors`` (beyond the paper; :mod:`agent.tie_trial`): a wider tie
-    width z' that the run tries. From episode ``greedy_tie_trial_episodes`` on, every second
-    episode breaks its greedy choices' ties at z' (the others train as without it), and
+    width z' that the run tries. From episode ``greedy_tie_trial_episodes`` on, one episode in
+    ``greedy_tie_trial_every`` breaks its greedy choices' ties at z' (the others train as
+    without it), and
     ``predict`` uses z' for the leaf's test and the ancestors' only while those episodes' mean
     return exceeds the others' by more than ``greedy_tie_trial_margin`` standard errors. Runs
     the tree ensemble's loop. None: off."""
     greedy_tie_trial_episodes: int = 300
-    """``greedy_tie_trial``: the episode (0-based, over the agent's life) from which the
-    episodes alternate."""
+    """``greedy_tie_trial``: the episode (0-based, over the agent's life) from which trial
+    episodes run."""
     greedy_tie_trial_margin: float = 2.0
     """``greedy_tie_trial``: how many standard errors of the difference the trial episodes'
     mean return must exceed the plain ones' by."""
+    greedy_tie_trial_every: int = 2
+    """``greedy_tie_trial``: from the start, one episode in this many is a trial episode (the
+    last of each group; 2: every second), so training runs as without the option in the
+    others."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -683,6 +688,11 @@ class TreeConfig:
         if isinstance(start, bool) or not isinstance(start, int) or start < 0:
             raise ValueError(
                 f"TreeConfig.greedy_tie_trial_episodes must be an int >= 0, got {start!r}"
+            )
+        every = self.greedy_tie_trial_every
+        if isinstance(every, bool) or not isinstance(every, int) or not 2 <= every <= 1000:
+            raise ValueError(
+                f"TreeConfig.greedy_tie_trial_every must be an int in [2, 1000], got {every!r}"
             )
         margin = self.greedy_tie_trial_margin
         if (

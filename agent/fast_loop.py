@@ -130,6 +130,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "greedy_tie_trial": (type(None),),
     "greedy_tie_trial_episodes": int,
     "greedy_tie_trial_margin": (float, int),
+    "greedy_tie_trial_every": int,
     # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)
     "table_cells": (int, type(None)),
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off

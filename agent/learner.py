@@ -163,6 +163,7 @@ class SMDPAgent:
                 cfg.greedy_tie_trial,
                 cfg.greedy_tie_trial_episodes,
                 cfg.greedy_tie_trial_margin,
+                cfg.greedy_tie_trial_every,
             )
         self.partition: Partition = self._make_partition(low, high)
         if self._track_scale:

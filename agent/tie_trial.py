@@ -8,7 +8,8 @@ task and found no single one: Acrobot gains 15 to 20 steps at z = 2, where CartP
 narrow-door mazes lose at it (docs/paper-notes.md, "Tie width chosen by the run").
 
 ``TreeConfig.greedy_tie_trial`` = z' lets each run measure which width its own task wants.
-From episode ``greedy_tie_trial_episodes`` on, the episodes alternate (the first of them plain):
+From episode ``greedy_tie_trial_episodes`` on, one episode in ``greedy_tie_trial_every`` (the
+last of each group; with 2 they alternate, the first plain) is a trial episode:
 
 * a *plain* episode trains as without the option;
 * a *trial* episode's greedy choices (those the strategy did not explore, where the chosen
@@ -57,20 +58,24 @@ class TieTrial:
     """``TreeConfig.greedy_tie_trial``'s bookkeeping: which episodes try the width, the returns
     of each kind of episode, and the widths ``predict`` uses now."""
 
-    def __init__(self, base: tuple[float, float], trial: float, start: int, margin: float) -> None:
+    def __init__(
+        self, base: tuple[float, float], trial: float, start: int, margin: float, every: int = 2
+    ) -> None:
         self.base = base
         """The configured widths: (``greedy_tie_errors``, ``greedy_tie_ancestors``)."""
         self.trial = trial
         self.start = start
         self.margin = margin
+        self.every = every
         self.plain = RunningMoments()
         """Returns of the plain episodes from the start on."""
         self.tried = RunningMoments()
         """Returns of the trial episodes."""
 
     def tries(self, episode: int) -> bool:
-        """Whether episode ``episode`` (0-based over the run) is a trial episode."""
-        return episode >= self.start and (episode - self.start) % 2 == 1
+        """Whether episode ``episode`` (0-based over the run) is a trial episode: from the start,
+        the last of each group of ``every``."""
+        return episode >= self.start and (episode - self.start) % self.every == self.every - 1
 
     def record(self, episode: int, episode_return: float) -> None:
         """Keep the return of episode ``episode``; an episode before the start is not kept."""

@@ -47,6 +47,15 @@ def test_episodes_alternate_from_the_start_plain_first() -> None:
     assert (trial.plain.mean, trial.tried.mean) == (2.0, 11.0)
 
 
+def test_one_episode_in_every_is_a_trial_the_last_of_each_group() -> None:
+    trial = TieTrial((1.0, 1.0), 2.0, start=3, margin=2.0, every=4)
+    assert [e for e in range(20) if trial.tries(e)] == [6, 10, 14, 18]
+    for episode in range(20):
+        trial.record(episode, float(episode))
+    assert (trial.plain.count, trial.tried.count) == (13, 4)
+    assert trial.tried.mean == 12.0
+
+
 def test_the_trial_width_is_adopted_only_beyond_the_margin_by_hand() -> None:
     trial = TieTrial((1.0, 0.5), 2.0, start=0, margin=2.0)
     assert trial.widths() == (1.0, 0.5)  # nothing measured
@@ -74,6 +83,9 @@ def test_the_trial_width_is_adopted_only_beyond_the_margin_by_hand() -> None:
         ({"greedy_tie_trial": "2"}, "greedy_tie_trial must be a number > 0"),
         ({"greedy_tie_trial_episodes": -1}, "greedy_tie_trial_episodes must be an int >= 0"),
         ({"greedy_tie_trial_episodes": 3.0}, "greedy_tie_trial_episodes must be an int >= 0"),
+        ({"greedy_tie_trial_every": 1}, "greedy_tie_trial_every must be an int in"),
+        ({"greedy_tie_trial_every": 2.0}, "greedy_tie_trial_every must be an int in"),
+        ({"greedy_tie_trial_every": 10**6}, "greedy_tie_trial_every must be an int in"),
         ({"greedy_tie_trial_margin": -0.1}, "greedy_tie_trial_margin must be a finite number"),
         ({"greedy_tie_trial_margin": math.nan}, "greedy_tie_trial_margin must be a finite number"),
     ],

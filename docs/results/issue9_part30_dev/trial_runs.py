@@ -11,7 +11,8 @@ trial set aside and both tie widths at 1 or 2). Protocols as part 27's str1 rows
     python trial_runs.py TASK OUT SEED [SEED ...]
     python trial_runs.py maze:LAYOUT OUT SEED [SEED ...]
 
-``TRIAL_START`` (default 300) sets ``greedy_tie_trial_episodes``.
+``TRIAL_START`` (default 300) sets ``greedy_tie_trial_episodes``, ``TRIAL_EVERY`` (default 2)
+``greedy_tie_trial_every``.
 """
 
 from __future__ import annotations
@@ -36,12 +37,16 @@ sys.path.insert(0, str(HERE.parents[1] / "issue9_part23_dev"))
 from supported_greedy import greedy_returns  # noqa: E402
 
 START = int(os.environ.get("TRIAL_START", "300"))
+EVERY = int(os.environ.get("TRIAL_EVERY", "2"))
 
 
 def candidate(env, seed: int):
     general = preset("general")
     config = dataclasses.replace(
-        general.config, greedy_tie_trial=2.0, greedy_tie_trial_episodes=START
+        general.config,
+        greedy_tie_trial=2.0,
+        greedy_tie_trial_episodes=START,
+        greedy_tie_trial_every=EVERY,
     )
     return tree_agent_class(config)(
         env.observation_space, env.action_space, general.make_exploration(), seed, config
@@ -89,6 +94,7 @@ def main(argv: list[str]) -> None:
             "task": task,
             "seed": seed,
             "start": START,
+            "every": EVERY,
             "adopted": trial.adopted,
             "diff": round(diff, 4),
             "se": round(se, 4),
