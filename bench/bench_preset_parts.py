@@ -60,6 +60,9 @@ PARTS: dict[int, str] = {
     25: "greedy_smoothing 1 with links and greedy_tie_errors 0.5: predict's greedy choice reads "
     "the leaf's standard errors and, at a tie, its linked neighbours' rows; no training step "
     "changes, so every run should be the same",
+    27: "greedy_tie_ancestors 1 in place of part 25's neighbours: predict's ties are broken by "
+    "the tree's ancestors, leaf by leaf; no training step changes, so every run should be the "
+    "same",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

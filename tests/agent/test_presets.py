@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import dataclasses
+import importlib.util
 import tomllib
+from pathlib import Path
 
 import pytest
 from gymnasium import spaces
 
 from agent import PRESETS, TreeConfig, general_as_of, preset, presets
+from agent.presets import GENERAL_CHANGES
 from agent.tree_ensemble import TreeEnsembleAgent
 from experiments import EXPERIMENT_DIR
 
@@ -327,3 +330,18 @@ def test_greedy_tie_comparisons_set_the_preset_against_the_part_before(
     assert _spelt_out(by_name[f"general-part{part}"]) == general_as_of(part)
     assert data["experiment"]["baseline"] == f"general-part{part}"
     assert data["experiment"]["seed"] == seed
+
+
+def test_every_preset_change_has_the_bench_s_description(monkeypatch: pytest.MonkeyPatch) -> None:
+    """``bench/bench_preset_parts.py`` times each part of ``GENERAL_CHANGES`` and refuses to run
+    when one has no description (it did so after part 27 until part 30)."""
+    bench = Path(__file__).resolve().parents[2] / "bench"
+    monkeypatch.syspath_prepend(str(bench))  # the bench imports its neighbour bench_general
+    path = bench / "bench_preset_parts.py"
+    spec = importlib.util.spec_from_file_location("bench_preset_parts", path)
+    assert spec is not None
+    assert spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert set(module.PARTS) == set(GENERAL_CHANGES)
+    assert all(isinstance(text, str) and text for text in module.PARTS.values())

@@ -1,5 +1,6 @@
-"""The run tries a wider tie width and keeps it where it earns more (``TreeConfig.greedy_tie_trial``;
-issue 9, part 30; docs/paper-notes.md, "Tie width chosen by the run")."""
+"""The run tries a wider tie width and keeps it where it earns more
+(``TreeConfig.greedy_tie_trial``; issue 9, part 30; docs/paper-notes.md, "Tie width chosen by
+the run")."""
 
 from __future__ import annotations
 
@@ -96,7 +97,7 @@ def test_bad_settings_are_refused_by_name(fields: dict[str, object], message: st
 
 
 def test_the_trial_needs_the_ancestors_and_runs_the_ensemble_loop() -> None:
-    with pytest.raises(ValueError, match="greedy_tie_trial = 2.0 needs greedy_tie_ancestors"):
+    with pytest.raises(ValueError, match=r"greedy_tie_trial = 2\.0 needs greedy_tie_ancestors"):
         TreeConfig(greedy_tie_trial=2.0)
     config = dataclasses.replace(preset("general").config, greedy_tie_trial=2.0)
     assert tree_agent_class(config) is TreeEnsembleAgent
@@ -156,7 +157,9 @@ def test_predict_uses_the_trial_width_for_both_tests_once_adopted() -> None:
         agent.config, greedy_tie_trial=None, greedy_tie_errors=2.0, greedy_tie_ancestors=2.0
     )
     assert [agent.predict(x) for x in probe] == adopted
-    agent.config = dataclasses.replace(agent.config, greedy_tie_errors=1.0, greedy_tie_ancestors=1.0)
+    agent.config = dataclasses.replace(
+        agent.config, greedy_tie_errors=1.0, greedy_tie_ancestors=1.0
+    )
     assert [agent.predict(x) for x in probe] != adopted  # the widths matter on this tree
 
 

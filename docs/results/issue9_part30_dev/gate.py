@@ -71,10 +71,15 @@ def main() -> None:
     out.append("## Part 29's round 8 (tie_selection.py, the last half of training)")
     classic(out, "CartPole 0-9", HERE / "r8_cp.jsonl", "ts_cp.jsonl", 475, "sel")
     mazes(out, "mazes", [ROUND8 / "r8_maze.jsonl", HERE / "r8_maze.jsonl"], "sel")
-    out += ["", "## The library's greedy_tie_trial (trial_runs.py, from episode 300)"]
-    classic(out, "Acrobot 0-9", HERE / "ac.jsonl", "ts_ac.jsonl", -100, "sel")
-    classic(out, "MountainCar 10-49", HERE / "mc.jsonl", "ts_mc.jsonl", -110, "sel")
-    classic(out, "CartPole 0-9", HERE / "cp.jsonl", "ts_cp.jsonl", 475, "sel")
+    for n, every in ((1, 2), (2, 4)):
+        out += ["", f"## Round {n}: greedy_tie_trial from episode 300, one episode in {every}"]
+        if n == 1:
+            out.append("(its maze runs are round 8's above; CartPole stopped after one run)")
+        classic(out, "Acrobot 0-9", HERE / f"r{n}_ac.jsonl", "ts_ac.jsonl", -100, "sel")
+        if n == 2:
+            mazes(out, "mazes", [HERE / "r2_maze.jsonl"], "sel")
+        classic(out, "MountainCar 10-49", HERE / f"r{n}_mc.jsonl", "ts_mc.jsonl", -110, "sel")
+        classic(out, "CartPole 0-9", HERE / f"r{n}_cp.jsonl", "ts_cp.jsonl", 475, "sel")
     (HERE / "gate.txt").write_text("\n".join(out) + "\n")
 
 
