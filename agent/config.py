@@ -326,10 +326,11 @@ class TreeConfig:
     greedy_tie_trial_margin: float = 2.0
     """``greedy_tie_trial``: how many standard errors of the difference the trial episodes'
     mean return must exceed the plain ones' by."""
-    greedy_tie_trial_every: int = 2
+    greedy_tie_trial_every: int = 4
     """``greedy_tie_trial``: from the start, one episode in this many is a trial episode (the
     last of each group; 2: every second), so training runs as without the option in the
-    others."""
+    others. Part 30 measured 2 and chose 4 (docs/paper-notes.md, "Tie width chosen by the
+    run")."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells

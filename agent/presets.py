@@ -108,7 +108,8 @@ GENERAL = Preset(
     "untried actions, a presplit of at most the first 4 of more than 8 inputs, gamma 0.9995 once "
     "every terminal is measured a failure, a greedy choice among actions with two stored epochs "
     "(one in a table's cell), where the tree's ancestors, compared leaf by leaf, break the "
-    "actions' statistical ties",
+    "actions' statistical ties, and from episode 300 one training episode in 4 that breaks "
+    "them at twice the width, which the greedy choice takes up where those episodes earn more",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -137,6 +138,10 @@ GENERAL = Preset(
         greedy_cell_epochs=1,
         greedy_tie_errors=1.0,
         greedy_tie_ancestors=1.0,
+        greedy_tie_trial=2.0,
+        greedy_tie_trial_episodes=300,
+        greedy_tie_trial_every=4,
+        greedy_tie_trial_margin=2.0,
     ),
     "adaptive+tabu",
 )
@@ -163,6 +168,7 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
         "greedy_tie_errors": 0.5,
         "greedy_tie_ancestors": None,
     },
+    30: {"greedy_tie_trial": None},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none).
@@ -173,7 +179,9 @@ latch shut where any terminal paid more than going on (FrozenLake's goal). Part 
 splits were adopted on 20 dev seeds and withdrawn on 20 more (docs/paper-notes.md, "Policy
 splits"), so it changed none. Part 22 changed none; parts 23, 24, 25 and 27 change only the
 greedy choice of ``predict``, never a training step (for part 24's, part 23's value of
-``greedy_min_epochs`` is 1). Part 26 changed none."""
+``greedy_min_epochs`` is 1). Part 26 changed none; parts 28 and 29 changed none. Part 30's
+changes training from episode 300 on (one episode in 4 breaks its greedy ties at z 2), and
+``predict``'s width where those episodes earn more."""
 
 
 def general_as_of(part: int) -> TreeConfig:

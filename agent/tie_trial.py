@@ -59,7 +59,7 @@ class TieTrial:
     of each kind of episode, and the widths ``predict`` uses now."""
 
     def __init__(
-        self, base: tuple[float, float], trial: float, start: int, margin: float, every: int = 2
+        self, base: tuple[float, float], trial: float, start: int, margin: float, every: int
     ) -> None:
         self.base = base
         """The configured widths: (``greedy_tie_errors``, ``greedy_tie_ancestors``)."""

@@ -63,6 +63,9 @@ PARTS: dict[int, str] = {
     27: "greedy_tie_ancestors 1 in place of part 25's neighbours: predict's ties are broken by "
     "the tree's ancestors, leaf by leaf; no training step changes, so every run should be the "
     "same",
+    30: "greedy_tie_trial 2: from episode 300, one training episode in 4 breaks its greedy "
+    "ties at z 2 (the leaf's standard errors and the ancestors' sums at each decision); a run "
+    "of at most 300 episodes is the same run, so time it with --episodes 600",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from gymnasium import spaces
 
-from agent import GridAgent, TreeAgent, TreeConfig, preset
+from agent import GridAgent, TreeAgent, TreeConfig, general_as_of, preset
 from agent.ancestor_ties import PairedSums, ancestors_choice
 from agent.leaf_model import LeafModel
 from agent.serialization import config_from_data
@@ -148,7 +148,8 @@ def _trained(config: TreeConfig, episodes: int = 12, seed: int = 3) -> TreeEnsem
 
 
 def _ancestors_config() -> TreeConfig:
-    return dataclasses.replace(preset("general").config, **RULE)  # type: ignore[arg-type]
+    # part 27's preset, before part 30's trial widths (which need the ancestors)
+    return dataclasses.replace(general_as_of(29), **RULE)  # type: ignore[arg-type]
 
 
 STATES = [np.array([p, v]) for p in np.linspace(-1.2, 0.6, 21) for v in np.linspace(-0.07, 0.07, 9)]
@@ -198,7 +199,7 @@ def test_training_is_the_same_run_and_the_sums_are_dropped_after_each_episode(
     tmp_path: Path,
 ) -> None:
     on = _ancestors_config()
-    assert on == preset("general").config  # part 27's preset
+    assert on == general_as_of(29)  # part 27's preset
     off = dataclasses.replace(on, greedy_tie_ancestors=None, greedy_smoothing=1.0)
     agents = [_trained(config) for config in (on, off)]
     assert agents[0].q == agents[1].q

@@ -56,6 +56,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"greedy_cell_epochs"}  # issue 9, part 24
     others |= {"greedy_smoothing", "greedy_smoothing_links", "greedy_tie_errors"}  # part 25
     others |= {"greedy_tie_ancestors"}  # part 27
+    others |= {"greedy_tie_trial"}  # part 30 (its companions stay at their defaults)
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -78,6 +79,10 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     # part 27 ("Ancestors compare leaf by leaf"), in place of part 25's neighbours
     assert (general.greedy_smoothing, general.greedy_smoothing_links) == (0.0, False)
     assert (general.greedy_tie_errors, general.greedy_tie_ancestors) == (1.0, 1.0)
+    # part 30 ("Tie width chosen by the run")
+    assert general.greedy_tie_trial == 2.0
+    assert (general.greedy_tie_trial_episodes, general.greedy_tie_trial_every) == (300, 4)
+    assert general.greedy_tie_trial_margin == 2.0
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -233,7 +238,9 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(27) == now
+    assert general_as_of(30) == now
+    now = dataclasses.replace(now, greedy_tie_trial=None)
+    assert general_as_of(29) == general_as_of(28) == general_as_of(27) == now
     now = dataclasses.replace(
         now,
         greedy_smoothing=1.0,
@@ -277,14 +284,14 @@ def test_general_as_of_turns_back_each_later_part() -> None:
 def test_general_as_of_takes_the_value_before_the_first_later_change(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    """A field that two later parts changed (gamma: 0.99 until part 11, 0.995 until part 30,
+    """A field that two later parts changed (gamma: 0.99 until part 11, 0.995 until a part 99,
     then today's) goes back to the value it had at the part asked for, whatever the order the
     changes were listed in."""
-    later = {30: {"gamma": 0.995}}
+    later = {99: {"gamma": 0.995}}
     for changes in ({**later, **presets.GENERAL_CHANGES}, {**presets.GENERAL_CHANGES, **later}):
         monkeypatch.setattr(presets, "GENERAL_CHANGES", changes)
-        assert general_as_of(30).gamma == preset("general").config.gamma
-        assert general_as_of(29).gamma == general_as_of(11).gamma == 0.995
+        assert general_as_of(99).gamma == preset("general").config.gamma
+        assert general_as_of(98).gamma == general_as_of(11).gamma == 0.995
         assert general_as_of(10).gamma == general_as_of(7).gamma == 0.99
 
 
@@ -317,6 +324,8 @@ def test_greedy_choice_comparisons_set_the_preset_against_the_part_before(
         ("greedy_ties_mountaincar", 24, 25101),
         ("greedy_ancestors_classic", 26, 27101),
         ("greedy_ancestors_mountaincar", 26, 27102),
+        ("tie_trial_classic", 29, 30101),
+        ("tie_trial_mazes", 29, 30102),
     ],
 )
 def test_greedy_tie_comparisons_set_the_preset_against_the_part_before(

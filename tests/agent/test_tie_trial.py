@@ -14,7 +14,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from agent import TreeAgent, TreeConfig, adapt_env, preset
+from agent import TreeAgent, TreeConfig, adapt_env, general_as_of, preset
 from agent.serialization import config_from_data
 from agent.tie_trial import RunningMoments, TieTrial
 from agent.tree_ensemble import TreeEnsembleAgent, tree_agent_class
@@ -40,7 +40,7 @@ def test_running_moments_match_the_sample_mean_and_variance() -> None:
 
 
 def test_episodes_alternate_from_the_start_plain_first() -> None:
-    trial = TieTrial((1.0, 1.0), 2.0, start=5, margin=2.0)
+    trial = TieTrial((1.0, 1.0), 2.0, start=5, margin=2.0, every=2)
     assert [trial.tries(e) for e in range(10)] == [False] * 6 + [True, False, True, False]
     for episode, ret in enumerate([99.0] * 5 + [1.0, 10.0, 2.0, 11.0, 3.0, 12.0]):
         trial.record(episode, ret)  # the five before the start are not kept
@@ -58,7 +58,7 @@ def test_one_episode_in_every_is_a_trial_the_last_of_each_group() -> None:
 
 
 def test_the_trial_width_is_adopted_only_beyond_the_margin_by_hand() -> None:
-    trial = TieTrial((1.0, 0.5), 2.0, start=0, margin=2.0)
+    trial = TieTrial((1.0, 0.5), 2.0, start=0, margin=2.0, every=2)
     assert trial.widths() == (1.0, 0.5)  # nothing measured
     for episode, ret in enumerate([1.0, 10.0, 2.0, 11.0, 3.0, 12.0]):
         trial.record(episode, ret)
@@ -67,7 +67,7 @@ def test_the_trial_width_is_adopted_only_beyond_the_margin_by_hand() -> None:
     assert se == pytest.approx(math.sqrt(1 / 3 + 1 / 3))  # both variances are 1
     assert trial.adopted
     assert trial.widths() == (2.0, 2.0)
-    near = TieTrial((1.0, 0.5), 2.0, start=0, margin=2.0)
+    near = TieTrial((1.0, 0.5), 2.0, start=0, margin=2.0, every=2)
     for episode, ret in enumerate([1.0, 2.5, 3.0, 4.5, 5.0, 6.5]):
         near.record(episode, ret)  # diff 1.5 against se 1.63: not adopted
     assert not near.adopted
@@ -121,7 +121,7 @@ def test_before_the_start_training_is_today_s_bit_for_bit() -> None:
 def test_trial_episodes_break_ties_at_the_trial_width_and_are_counted() -> None:
     env = adapt_env(gym.make("Acrobot-v1"))
     plain = preset("general").agent(env.observation_space, env.action_space, seed=1)
-    tried = _trial_agent(env, seed=1, greedy_tie_trial_episodes=4)
+    tried = _trial_agent(env, seed=1, greedy_tie_trial_episodes=4, greedy_tie_trial_every=2)
     assert isinstance(tried, TreeEnsembleAgent)
     calls: list[tuple[int, int, int]] = []
     choose = tried._trial_choice
@@ -219,7 +219,10 @@ def test_a_damaged_trial_entry_is_refused_by_file_name(tmp_path: Path, state: ob
 
 def test_a_trial_entry_without_the_option_is_refused(tmp_path: Path) -> None:
     env = gym.make("CartPole-v1")
-    agent = preset("general").agent(env.observation_space, env.action_space, seed=0)
+    config = general_as_of(29)  # the general preset before the trial
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, "adaptive+tabu", 0, config
+    )
     agent.learn(env, 3, reset_seed=0)
     good = agent.save(tmp_path / "good.npz")
     with np.load(good, allow_pickle=False) as data:

@@ -170,13 +170,14 @@ def test_actions_follow_the_mean_of_the_trees_rows() -> None:
 def test_one_tree_is_the_plain_tree_bit_for_bit() -> None:
     env = gym.make("CartPole-v1")
     # the general preset without its loop options (hold_terminals, collision_splits,
-    # failure_gamma and its measure): TreeAgent's loop can run it
+    # failure_gamma and its measure, greedy_tie_trial): TreeAgent's loop can run it
     config = dataclasses.replace(
         preset("general").config,
         hold_terminals=None,
         collision_splits=False,
         failure_gamma=None,
         failure_measure="mean",
+        greedy_tie_trial=None,
     )
     plain = TreeAgent(env.observation_space, env.action_space, "adaptive+tabu", 3, config)
     one = TreeEnsembleAgent(env.observation_space, env.action_space, "adaptive+tabu", 3, config)
