@@ -1,0 +1,133 @@
+"""Part 30's held-out rows: today's preset (``greedy_tie_trial``) against part 29's
+(``general_as_of(29)``, spelt out as ``general-part29``), both arms trained on the same fresh
+experiment seeds. Training differs from episode 300 on, so a pair is two runs with the same run
+seed (the same agent seed and reset seeds), not the same run.
+
+Classic control (seed 30101): per task, each arm's runs at the target, mean greedy return (20
+greedy episodes a run), the paired change with a bootstrap 95 % interval and a sign test. Mazes
+(the suite's test split, seed 30102): per layout, each arm's final (last 100 training episodes)
+over the optimum, area under the curve over the optimum, converged runs and their median
+episode, and greedy steps, with the best uniform grid's area; and the geometric means over the
+layouts.
+
+    python pair.py            (from anywhere; writes pair.txt beside this file)
+"""
+
+from __future__ import annotations
+
+import csv
+import importlib.util
+import math
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+RESULTS = HERE.parent
+_SPEC = importlib.util.spec_from_file_location(
+    "part25_pair", RESULTS / "issue9_part25_heldout_rows" / "pair.py"
+)
+assert _SPEC is not None and _SPEC.loader is not None
+_PART25 = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(_PART25)
+wilson, sign_p, TARGET = _PART25.wilson, _PART25.sign_p, _PART25.TARGET
+CLASSIC = RESULTS / "issue9_part30_heldout_classic_seed30101"
+MAZES = RESULTS / "issue9_part30_heldout_mazes_seed30102"
+ARMS = ("general-part29", "general")
+
+
+def greedy_means(folder: Path) -> dict[tuple[str, str], dict[int, float]]:
+    """Mean greedy return per (task, strategy) and run index, from ``evaluation.csv``."""
+    sums: dict[tuple[str, str, int], list[float]] = defaultdict(list)
+    with (folder / "evaluation.csv").open() as f:
+        for row in csv.DictReader(f):
+            sums[(row["task"], row["strategy"], int(row["run"]))].append(float(row["return"]))
+    out: dict[tuple[str, str], dict[int, float]] = defaultdict(dict)
+    for (task, strategy, run), values in sums.items():
+        out[(task, strategy)][run] = sum(values) / len(values)
+    return out
+
+
+def classic(lines: list[str]) -> None:
+    if not (CLASSIC / "evaluation.csv").exists():
+        lines.append("classic: not run")
+        return
+    means = greedy_means(CLASSIC)
+    for task, target in TARGET.items():
+        old, new = means.get((task, ARMS[0]), {}), means.get((task, ARMS[1]), {})
+        runs = sorted(set(old) & set(new))
+        if len(runs) < 10:
+            lines.append(f"{task}: {len(runs)} pairs finished")
+            continue
+        a = [old[r] for r in runs]
+        b = [new[r] for r in runs]
+        diffs = np.asarray(b) - np.asarray(a)
+        boot = np.random.default_rng(0).choice(diffs, size=(10_000, len(diffs))).mean(axis=1)
+        low, high = np.percentile(boot, [2.5, 97.5])
+        higher, lower = int((diffs > 0).sum()), int((diffs < 0).sum())
+        n = len(runs)
+        lines.append(
+            f"{task}: part 29 {sum(v >= target for v in a)} of {n} at {target:g}, mean "
+            f"{np.mean(a):.2f}; part 30 {sum(v >= target for v in b)} of {n}, mean "
+            f"{np.mean(b):.2f}; change {diffs.mean():+.2f} [{low:+.2f}, {high:+.2f}], higher "
+            f"{higher}, lower {lower}, sign test p = {sign_p(higher, lower):.2g}"
+        )
+        lines.append("  part 29: " + ", ".join(f"{v:.2f}" for v in a))
+        lines.append("  part 30: " + ", ".join(f"{v:.2f}" for v in b))
+
+
+def mazes(lines: list[str]) -> None:
+    if not (MAZES / "summary.csv").exists():
+        lines.append("mazes: not run")
+        return
+    rows: dict[tuple[str, str], dict[str, str]] = {}
+    with (MAZES / "summary.csv").open() as f:
+        for row in csv.DictReader(f):
+            rows[(row["task"], row["strategy"])] = row
+    layouts = sorted({task for task, _ in rows})
+    logs: dict[str, dict[str, list[float]]] = {arm: defaultdict(list) for arm in ARMS}
+    lines.append(
+        "layout: final / optimum, AUC / optimum, converged (median episode), greedy steps / "
+        "optimum; part 29 -> part 30"
+    )
+    for layout in layouts:
+        cells = []
+        for arm in ARMS:
+            r = rows.get((layout, arm))
+            if r is None:
+                cells.append("not run")
+                continue
+            optimum = float(r["optimal_steps"])
+            final, auc = float(r["final_to_optimal_mean"]), float(r["auc_to_optimal_mean"])
+            greedy = float(r["greedy_steps_mean"]) / optimum
+            for key, value in (("final", final), ("auc", auc), ("greedy", greedy)):
+                logs[arm][key].append(math.log(value))
+            cells.append(
+                f"{final:.3f}, {auc:.3f}, {r['converged_runs']}/{r['runs']} "
+                f"({r['median_convergence_episode']}), {greedy:.3f}"
+            )
+        grids = [
+            float(r["auc_to_optimal_mean"])
+            for (task, arm), r in rows.items()
+            if task == layout and arm.startswith("grid-")
+        ]
+        best = f"; best grid's AUC {min(grids):.3f}" if grids else ""
+        lines.append(f"  {layout}: {cells[0]} -> {cells[1]}{best}")
+    for key in ("final", "auc", "greedy"):
+        geo = [math.exp(float(np.mean(logs[arm][key]))) for arm in ARMS if logs[arm][key]]
+        if len(geo) == 2:
+            lines.append(f"geometric mean {key}: {geo[0]:.3f} -> {geo[1]:.3f}")
+
+
+def main() -> None:
+    lines = ["# Part 30's held-out rows (pair.py)", ""]
+    classic(lines)
+    lines.append("")
+    mazes(lines)
+    (HERE / "pair.txt").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
