@@ -77,6 +77,30 @@ def classic(lines: list[str]) -> None:
         lines.append("  part 30: " + ", ".join(f"{v:.2f}" for v in b))
 
 
+def latest_convergence(arm: str) -> str:
+    """The latest per-run convergence episode of ``arm`` over the maze layouts (the report's
+    rule, ``experiments.statistics.convergence_episode``), or which runs never converged."""
+    from experiments.statistics import convergence_episode
+
+    worst: tuple[int, str] | None = None
+    never = []
+    for path in sorted((MAZES / "runs").glob(f"*/{arm}__*.csv")):
+        if path.name.endswith(".eval.csv"):
+            continue
+        with path.open() as f:
+            rows = list(csv.DictReader(f))
+        steps = np.asarray([float(r["steps"]) for r in rows])
+        success = float(np.mean([float(r["success"]) for r in rows[-100:]]))
+        episode = convergence_episode(steps, 50, 0.1, final_window=100, final_success=success)
+        where = f"{path.parent.name} {path.stem.split('__')[1]}"
+        if episode is None:
+            never.append(where)
+        elif worst is None or episode > worst[0]:
+            worst = (episode, where)
+    text = f"{worst[0]} ({worst[1]})" if worst else "none"
+    return text + (f", never converged: {never}" if never else "")
+
+
 def mazes(lines: list[str]) -> None:
     if not (MAZES / "summary.csv").exists():
         lines.append("mazes: not run")
@@ -114,6 +138,11 @@ def mazes(lines: list[str]) -> None:
         ]
         best = f"; best grid's AUC {min(grids):.3f}" if grids else ""
         lines.append(f"  {layout}: {cells[0]} -> {cells[1]}{best}")
+    latest = {arm: latest_convergence(arm) for arm in ARMS}
+    lines.append(
+        "latest run convergence (episode; window 50, tolerance 0.1, the report's rule): "
+        + "; ".join(f"{arm} {latest[arm]}" for arm in ARMS)
+    )
     for key in ("final", "auc", "greedy"):
         geo = [math.exp(float(np.mean(logs[arm][key]))) for arm in ARMS if logs[arm][key]]
         if len(geo) == 2:
