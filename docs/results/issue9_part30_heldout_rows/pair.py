@@ -3,8 +3,8 @@
 experiment seeds. Training differs from episode 300 on, so a pair is two runs with the same run
 seed (the same agent seed and reset seeds), not the same run.
 
-Classic control (seed 30101): per task, each arm's runs at the target, mean greedy return (20
-greedy episodes a run), the paired change with a bootstrap 95 % interval and a sign test. Mazes
+Classic control (fresh sets 30101 and 30103): per set and task, each arm's runs at the target, mean greedy return (20
+greedy episodes a run), the paired change with a bootstrap 95 % interval and a sign test, then the totals over the sets. Mazes
 (the suite's test split, seed 30102): per layout, each arm's final (last 100 training episodes)
 over the optimum, area under the curve over the optimum, converged runs and their median
 episode, and greedy steps, with the best uniform grid's area; and the geometric means over the
@@ -32,7 +32,7 @@ assert _SPEC is not None and _SPEC.loader is not None
 _PART25 = importlib.util.module_from_spec(_SPEC)
 _SPEC.loader.exec_module(_PART25)
 wilson, sign_p, TARGET = _PART25.wilson, _PART25.sign_p, _PART25.TARGET
-CLASSIC = RESULTS / "issue9_part30_heldout_classic_seed30101"
+CLASSIC_SETS = (30101, 30103)
 MAZES = RESULTS / "issue9_part30_heldout_mazes_seed30102"
 ARMS = ("general-part29", "general")
 
@@ -50,31 +50,46 @@ def greedy_means(folder: Path) -> dict[tuple[str, str], dict[int, float]]:
 
 
 def classic(lines: list[str]) -> None:
-    if not (CLASSIC / "evaluation.csv").exists():
-        lines.append("classic: not run")
-        return
-    means = greedy_means(CLASSIC)
-    for task, target in TARGET.items():
-        old, new = means.get((task, ARMS[0]), {}), means.get((task, ARMS[1]), {})
-        runs = sorted(set(old) & set(new))
-        if len(runs) < 10:
-            lines.append(f"{task}: {len(runs)} pairs finished")
+    totals: dict[str, tuple[list[float], list[float]]] = {}
+    for seed in CLASSIC_SETS:
+        folder = RESULTS / f"issue9_part30_heldout_classic_seed{seed}"
+        if not (folder / "evaluation.csv").exists():
+            lines.append(f"classic {seed}: not run")
             continue
-        a = [old[r] for r in runs]
-        b = [new[r] for r in runs]
-        diffs = np.asarray(b) - np.asarray(a)
-        boot = np.random.default_rng(0).choice(diffs, size=(10_000, len(diffs))).mean(axis=1)
-        low, high = np.percentile(boot, [2.5, 97.5])
-        higher, lower = int((diffs > 0).sum()), int((diffs < 0).sum())
-        n = len(runs)
-        lines.append(
-            f"{task}: part 29 {sum(v >= target for v in a)} of {n} at {target:g}, mean "
-            f"{np.mean(a):.2f}; part 30 {sum(v >= target for v in b)} of {n}, mean "
-            f"{np.mean(b):.2f}; change {diffs.mean():+.2f} [{low:+.2f}, {high:+.2f}], higher "
-            f"{higher}, lower {lower}, sign test p = {sign_p(higher, lower):.2g}"
-        )
-        lines.append("  part 29: " + ", ".join(f"{v:.2f}" for v in a))
-        lines.append("  part 30: " + ", ".join(f"{v:.2f}" for v in b))
+        means = greedy_means(folder)
+        for task in TARGET:
+            old, new = means.get((task, ARMS[0]), {}), means.get((task, ARMS[1]), {})
+            runs = sorted(set(old) & set(new))
+            if len(runs) < 10:
+                lines.append(f"{seed} {task}: {len(runs)} pairs finished")
+                continue
+            a, b = [old[r] for r in runs], [new[r] for r in runs]
+            both = totals.setdefault(task, ([], []))
+            both[0].extend(a)
+            both[1].extend(b)
+            lines.append(f"{seed} " + _pairs(task, a, b))
+            lines.append("  part 29: " + ", ".join(f"{v:.2f}" for v in a))
+            lines.append("  part 30: " + ", ".join(f"{v:.2f}" for v in b))
+    for task, (a, b) in totals.items():
+        if len(a) > 10:
+            lines.append("all sets " + _pairs(task, a, b, rates=True))
+
+
+def _pairs(task: str, a: list[float], b: list[float], rates: bool = False) -> str:
+    """One line: each arm's runs at the target and mean, and the paired change."""
+    target, n = TARGET[task], len(a)
+    diffs = np.asarray(b) - np.asarray(a)
+    boot = np.random.default_rng(0).choice(diffs, size=(10_000, n)).mean(axis=1)
+    low, high = np.percentile(boot, [2.5, 97.5])
+    higher, lower = int((diffs > 0).sum()), int((diffs < 0).sum())
+    hits = [sum(v >= target for v in arm) for arm in (a, b)]
+    rate = [f" {wilson(k, n)}" if rates else "" for k in hits]
+    return (
+        f"{task}: part 29 {hits[0]} of {n}{rate[0]} at {target:g}, mean {np.mean(a):.2f}; "
+        f"part 30 {hits[1]} of {n}{rate[1]}, mean {np.mean(b):.2f}; change {diffs.mean():+.2f} "
+        f"[{low:+.2f}, {high:+.2f}], higher {higher}, lower {lower}, sign test p = "
+        f"{sign_p(higher, lower):.2g}"
+    )
 
 
 def latest_convergence(arm: str) -> str:
