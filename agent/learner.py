@@ -847,13 +847,18 @@ class SMDPAgent:
             k = cell  # TreeConfig.greedy_cell_epochs: every tree's leaf is one input
             if k == 0:
                 return None
-        if len(agents) == 1:
-            counts = agents[0].support(leaves[0])
-        else:  # an ensemble: the fewest epochs over the trees
-            each = [agent.support(leaf) for agent, leaf in zip(agents, leaves, strict=True)]
-            counts = [min(column) for column in zip(*each, strict=True)]
+        counts = self.fewest_epochs(agents, leaves)
         allowed = [a for a, c in enumerate(counts) if c >= k]
         return allowed or None
+
+    @staticmethod
+    def fewest_epochs(agents: Sequence[SMDPAgent], leaves: Sequence[int]) -> list[int]:
+        """Each action's stored epochs (:meth:`support`) in the trees' ``leaves``, the fewest
+        over the trees (``agents[i]`` holding ``leaves[i]``)."""
+        if len(agents) == 1:
+            return agents[0].support(leaves[0])
+        each = [agent.support(leaf) for agent, leaf in zip(agents, leaves, strict=True)]
+        return [min(column) for column in zip(*each, strict=True)]
 
     def leaf_of(self, obs: Any) -> int:
         """Id of the leaf that holds ``obs``."""

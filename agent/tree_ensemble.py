@@ -567,8 +567,7 @@ class TreeEnsembleAgent(TreeAgent):
         if self.exploration.explored or self.holds_one_input(leaves[0]):
             return action
         least = max(self.config.greedy_min_epochs, 1)
-        each = [m.support(leaf) for m, leaf in zip(self.members, leaves, strict=True)]
-        counts = [min(column) for column in zip(*each, strict=True)]
+        counts = self.fewest_epochs(self.members, leaves)
         if counts[action] < least:
             return action
         listed = self.exploration.listed(leaves[0])
