@@ -331,6 +331,13 @@ class TreeConfig:
     last of each group; 2: every second), so training runs as without the option in the
     others. Part 30 measured 2 and chose 4 (docs/paper-notes.md, "Tie width chosen by the
     run")."""
+    greedy_tie_trial_follow: bool = False
+    """``greedy_tie_trial`` (beyond the paper): while ``predict`` uses z', training follows it.
+    The roles of the episodes swap: from the start, every episode but the last of each group of
+    ``greedy_tie_trial_every`` breaks its greedy choices' ties at z', and the last trains as
+    without the option, so the comparison goes on with the kinds' shares reversed. Returns are
+    kept by kind, not by position in the group. False: one episode in ``every`` tries z'
+    whatever the comparison says (part 30)."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -705,6 +712,9 @@ class TreeConfig:
             raise ValueError(
                 f"TreeConfig.greedy_tie_trial_margin must be a finite number >= 0, got {margin!r}"
             )
+        follow = self.greedy_tie_trial_follow
+        if not isinstance(follow, bool):
+            raise ValueError(f"TreeConfig.greedy_tie_trial_follow must be a bool, got {follow!r}")
         if trial is None:
             return
         if (

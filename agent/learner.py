@@ -164,6 +164,7 @@ class SMDPAgent:
                 cfg.greedy_tie_trial_episodes,
                 cfg.greedy_tie_trial_margin,
                 cfg.greedy_tie_trial_every,
+                follow=cfg.greedy_tie_trial_follow,
             )
         self.partition: Partition = self._make_partition(low, high)
         if self._track_scale:

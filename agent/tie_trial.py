@@ -23,6 +23,12 @@ return exceeds the plain episodes' by more than ``greedy_tie_trial_margin`` stan
 the difference, sqrt(s_p^2 / n_p + s_t^2 / n_t) (at least two episodes of each kind); otherwise
 the configured widths. The rule needs no knowledge of the run's length: the comparison grows
 with the run, and a run shorter than the start never tries z'.
+
+``TreeConfig.greedy_tie_trial_follow`` lets training follow the width ``predict`` uses: while
+z' is adopted, the kinds swap places in each group (every episode but the last breaks its
+ties at z', the last is plain), so most of training acts as the greedy policy will. An
+episode's kind is fixed at its start (adoption changes only when an episode ends) and its
+return goes to its kind's moments.
 """
 
 from __future__ import annotations
@@ -59,7 +65,14 @@ class TieTrial:
     of each kind of episode, and the widths ``predict`` uses now."""
 
     def __init__(
-        self, base: tuple[float, float], trial: float, start: int, margin: float, every: int
+        self,
+        base: tuple[float, float],
+        trial: float,
+        start: int,
+        margin: float,
+        every: int,
+        *,
+        follow: bool = False,
     ) -> None:
         self.base = base
         """The configured widths: (``greedy_tie_errors``, ``greedy_tie_ancestors``)."""
@@ -67,6 +80,8 @@ class TieTrial:
         self.start = start
         self.margin = margin
         self.every = every
+        self.follow = follow
+        """``TreeConfig.greedy_tie_trial_follow``: the kinds swap while z' is adopted."""
         self.plain = RunningMoments()
         """Returns of the plain episodes from the start on."""
         self.tried = RunningMoments()
@@ -74,8 +89,13 @@ class TieTrial:
 
     def tries(self, episode: int) -> bool:
         """Whether episode ``episode`` (0-based over the run) is a trial episode: from the start,
-        the last of each group of ``every``."""
-        return episode >= self.start and (episode - self.start) % self.every == self.every - 1
+        the last of each group of ``every``; with ``follow`` while z' is adopted, every other
+        one. Asked at the episode's start and again by :meth:`record`, before anything of the
+        episode is kept, so both see the same moments."""
+        if episode < self.start:
+            return False
+        last = (episode - self.start) % self.every == self.every - 1
+        return not last if self.follow and self.adopted else last
 
     def record(self, episode: int, episode_return: float) -> None:
         """Keep the return of episode ``episode``; an episode before the start is not kept."""

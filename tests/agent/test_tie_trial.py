@@ -74,6 +74,58 @@ def test_the_trial_width_is_adopted_only_beyond_the_margin_by_hand() -> None:
     assert near.widths() == (1.0, 0.5)
 
 
+def test_following_swaps_the_kinds_while_the_width_is_adopted_by_hand() -> None:
+    trial = TieTrial((1.0, 1.0), 2.0, start=2, margin=2.0, every=4, follow=True)
+    assert [e for e in range(10) if trial.tries(e)] == [5, 9]  # not adopted: as without follow
+    returns = {2: 1.0, 3: 2.0, 4: 3.0, 5: 20.0, 6: 1.5, 7: 2.5, 8: 3.5, 9: 21.0}
+    for episode in range(10):
+        trial.record(episode, returns.get(episode, 99.0))  # 0 and 1 precede the start
+    assert (trial.plain.count, trial.tried.count) == (6, 2)
+    assert trial.adopted  # 20.5 against 2.25, se 0.58
+    assert [e for e in range(10, 18) if trial.tries(e)] == [10, 11, 12, 14, 15, 16]
+    trial.record(10, 40.0)  # a z' episode now, kept as a trial episode's return
+    trial.record(13, 4.0)  # the last of its group: plain
+    assert (trial.plain.count, trial.tried.count) == (7, 3)
+    assert trial.tried.mean == pytest.approx((20.0 + 21.0 + 40.0) / 3)
+    kept = TieTrial((1.0, 1.0), 2.0, start=2, margin=2.0, every=4)
+    kept.restore(trial.state(), "test")
+    assert kept.adopted
+    assert [e for e in range(10, 18) if kept.tries(e)] == [13, 17]
+
+
+def test_following_is_today_s_run_while_the_width_is_never_adopted() -> None:
+    env = adapt_env(gym.make("Acrobot-v1"))
+    fields = {"greedy_tie_trial_episodes": 2, "greedy_tie_trial_margin": 1e9}
+    alone = _trial_agent(env, seed=4, **fields)
+    following = _trial_agent(env, seed=4, greedy_tie_trial_follow=True, **fields)
+    assert alone.learn(env, 10, reset_seed=3) == following.learn(env, 10, reset_seed=3)
+    assert alone.q == following.q
+    assert following.tie_trial is not None
+    assert following.tie_trial.tried.count == 2
+
+
+def test_following_trains_at_the_trial_width_once_adopted() -> None:
+    env = adapt_env(gym.make("Acrobot-v1"))
+    agent = _trial_agent(env, seed=1, greedy_tie_trial_episodes=2, greedy_tie_trial_follow=True)
+    assert isinstance(agent, TreeEnsembleAgent)
+    assert agent.tie_trial is not None
+    agent.learn(env, 2, reset_seed=5)
+    agent.tie_trial.restore({"plain": [10, -500.0, 9.0], "tried": [10, -300.0, 9.0]}, "test")
+    assert agent.tie_trial.adopted
+    episodes: set[int] = set()
+    choose = agent._trial_choice
+
+    def watched(leaves: list[int], row: list[float], action: int) -> int:
+        episodes.add(agent.episodes_done)
+        return choose(leaves, row, action)
+
+    agent._trial_choice = watched  # type: ignore[method-assign]
+    agent.learn(env, 8, reset_seed=6)  # episodes 2-9: groups 2-5 and 6-9
+    assert agent.tie_trial.adopted  # 8 more returns do not undo a 200-step lead
+    assert episodes == {2, 3, 4, 6, 7, 8}
+    assert (agent.tie_trial.plain.count, agent.tie_trial.tried.count) == (12, 16)
+
+
 @pytest.mark.parametrize(
     ("fields", "message"),
     [
@@ -89,6 +141,9 @@ def test_the_trial_width_is_adopted_only_beyond_the_margin_by_hand() -> None:
         ({"greedy_tie_trial_every": 10**6}, "greedy_tie_trial_every must be an int in"),
         ({"greedy_tie_trial_margin": -0.1}, "greedy_tie_trial_margin must be a finite number"),
         ({"greedy_tie_trial_margin": math.nan}, "greedy_tie_trial_margin must be a finite number"),
+        ({"greedy_tie_trial_follow": 1}, "greedy_tie_trial_follow must be a bool, got 1"),
+        ({"greedy_tie_trial_follow": "yes"}, "greedy_tie_trial_follow must be a bool"),
+        ({"greedy_tie_trial_follow": None}, "greedy_tie_trial_follow must be a bool"),
     ],
 )
 def test_bad_settings_are_refused_by_name(fields: dict[str, object], message: str) -> None:
