@@ -331,14 +331,6 @@ class TreeConfig:
     last of each group; 2: every second), so training runs as without the option in the
     others. Part 30 measured 2 and chose 4 (docs/paper-notes.md, "Tie width chosen by the
     run")."""
-    greedy_tie_trial_on_entry: bool = False
-    """``greedy_tie_trial`` (beyond the paper): a trial episode remakes a greedy choice at z'
-    only on entering a leaf (the episode's first decision, or one after a leaf crossing). A
-    decision taken again in the same leaf (after a collision, a split or the epoch cap) keeps
-    the strategy's choice, which has learnt from the epoch that just ended, where ``predict``'s
-    rule reads standard errors and ancestors' sums cached at the episode's start and would
-    repeat itself. False: every greedy choice of a trial episode is remade (part 30), which can
-    push a maze agent into one wall for a whole episode."""
     greedy_tie_trial_follow: bool = False
     """``greedy_tie_trial`` (beyond the paper): while ``predict`` uses z', training follows it.
     The roles of the episodes swap: from the start, every episode but the last of each group of
@@ -720,10 +712,9 @@ class TreeConfig:
             raise ValueError(
                 f"TreeConfig.greedy_tie_trial_margin must be a finite number >= 0, got {margin!r}"
             )
-        for name in ("greedy_tie_trial_follow", "greedy_tie_trial_on_entry"):
-            flag = getattr(self, name)
-            if not isinstance(flag, bool):
-                raise ValueError(f"TreeConfig.{name} must be a bool, got {flag!r}")
+        follow = self.greedy_tie_trial_follow
+        if not isinstance(follow, bool):
+            raise ValueError(f"TreeConfig.greedy_tie_trial_follow must be a bool, got {follow!r}")
         if trial is None:
             return
         if (

@@ -433,7 +433,6 @@ class TreeEnsembleAgent(TreeAgent):
 
         first_only = cfg.ensemble_decisions == "first"
         trial = self.tie_trial is not None and self.tie_trial.tries(self.episodes_done)
-        on_entry = cfg.greedy_tie_trial_on_entry  # a same-leaf decision keeps the strategy's
         x = [float(v) for v in obs]
         leaves = self._leaves(x)
         row = self.mean_row(leaves)
@@ -518,7 +517,7 @@ class TreeEnsembleAgent(TreeAgent):
                 else:
                     row = self.mean_row(leaves)
                     action = strategy.select(leaves[0], row, rng)
-                    if trial and (changed or not on_entry):
+                    if trial:
                         action = self._trial_choice(leaves, row, action)
                     hold = hold_exploration and strategy.explored
                     self._explored = strategy.explored

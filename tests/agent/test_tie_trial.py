@@ -13,7 +13,6 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 import pytest
-from gymnasium import spaces
 
 from agent import TreeAgent, TreeConfig, adapt_env, general_as_of, preset
 from agent.serialization import config_from_data
@@ -127,51 +126,6 @@ def test_following_trains_at_the_trial_width_once_adopted() -> None:
     assert (agent.tie_trial.plain.count, agent.tie_trial.tried.count) == (12, 16)
 
 
-class Stuck(gym.Env[np.ndarray, int]):
-    """One input that never changes: every decision after an episode's first is taken again in
-    the same leaf (the epoch cap ends each epoch), as an agent pressed against a wall."""
-
-    observation_space = spaces.Box(0.0, 1.0, shape=(1,), dtype=np.float64)
-    action_space = spaces.Discrete(3)
-
-    def reset(
-        self, *, seed: int | None = None, options: dict[str, object] | None = None
-    ) -> tuple[np.ndarray, dict[str, object]]:
-        super().reset(seed=seed)
-        self.t = 0
-        return np.array([0.5]), {}
-
-    def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict[str, object]]:
-        self.t += 1
-        return np.array([0.5]), -1.0 - 0.1 * action, False, self.t >= 160, {}
-
-
-@pytest.mark.parametrize("on_entry", [False, True])
-def test_on_entry_a_trial_remakes_only_the_first_choice_in_a_leaf(on_entry: bool) -> None:
-    env = Stuck()
-    agent = _trial_agent(
-        env,
-        seed=0,
-        greedy_tie_trial_episodes=1,
-        greedy_tie_trial_every=2,
-        greedy_tie_trial_on_entry=on_entry,
-    )
-    assert isinstance(agent, TreeEnsembleAgent)
-    assert agent.config.max_epoch_steps == 50  # 160 steps: four epochs an episode
-    calls: list[int] = []
-    choose = agent._trial_choice
-
-    def watched(leaves: list[int], row: list[float], action: int) -> int:
-        calls.append(agent.episodes_done)
-        return choose(leaves, row, action)
-
-    agent._trial_choice = watched  # type: ignore[method-assign]
-    history = agent.learn(env, 6, reset_seed=0)
-    assert [h.epochs for h in history] == [4] * 6
-    expected = [2, 4] if on_entry else [2] * 4 + [4] * 4  # trial episodes 2 and 4
-    assert calls == expected
-
-
 @pytest.mark.parametrize(
     ("fields", "message"),
     [
@@ -190,8 +144,6 @@ def test_on_entry_a_trial_remakes_only_the_first_choice_in_a_leaf(on_entry: bool
         ({"greedy_tie_trial_follow": 1}, "greedy_tie_trial_follow must be a bool, got 1"),
         ({"greedy_tie_trial_follow": "yes"}, "greedy_tie_trial_follow must be a bool"),
         ({"greedy_tie_trial_follow": None}, "greedy_tie_trial_follow must be a bool"),
-        ({"greedy_tie_trial_on_entry": 0}, "greedy_tie_trial_on_entry must be a bool, got 0"),
-        ({"greedy_tie_trial_on_entry": "no"}, "greedy_tie_trial_on_entry must be a bool"),
     ],
 )
 def test_bad_settings_are_refused_by_name(fields: dict[str, object], message: str) -> None:
