@@ -398,7 +398,7 @@ FINGERPRINTS = {
     "BulletMazeEnv.step": "2b0f9869c283e208",
     "BulletMazeEnv.fast_core": "7936da0308bf1673",
     "World.certified_free": "4e09b0d9feccf14f",
-    "World.sweep_collides": "a558adefa017c807",
+    "World.sweep_collides": "ab65a80ae4b18e9e",
     "World._closest": "f159013e903d93e3",
     "World.place_probe": "108f3db2a31e5627",
     "_CellBounds.clear": "70e9511f5b4adbf8",
@@ -1717,6 +1717,7 @@ def _sweep_queries(world: Any) -> Callable[[float, float, float, float, int], bo
     max_queries = module.MAX_SWEEP_QUERIES
     height = module.WALL_HEIGHT / 4 * metres
     hypot, inf = math.hypot, math.inf
+    release = world.contact_release
     closest: Callable[[float, float, float], Any]
     single = world._single
     if single is not None:
@@ -1760,10 +1761,10 @@ def _sweep_queries(world: Any) -> Callable[[float, float, float, float, int], bo
             advance = inf
             for point in points:
                 distance = point[8] / metres
-                if distance < tolerance:
-                    return True
                 normal = point[7]
                 rate = ux * normal[0] + uy * normal[1]
+                if distance < tolerance and (rate < 0.0 or not release):
+                    return True
                 if rate < 0.0:
                     advance = min(advance, (distance - half_tolerance) / -rate)
             travelled += advance

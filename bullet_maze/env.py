@@ -184,7 +184,9 @@ class BulletMazeEnv(gym.Env[Any, Any]):
     * `"kinematic"` (default), the paper's exact step: the robot follows its drive's exact
       kinematic model (a straight move; the unicycle; the bicycle model), swept with its
       footprint disc against the walls and obstacles with pybullet distance queries; if it
-      touches anything the robot stays put.
+      touches anything the robot stays put. A robot resting against a solid may still leave it:
+      only a move towards the solid is a collision (`contact_release`, default True; False is
+      the sweep before 2026-12-07, which could hold a robot against a wall for good).
     * `"dynamic"`: physics, through the robot's own actuators (the base velocity of a
       holonomic body; wheel velocities; rear-wheel speed and steering angles), for `substeps`
       physics steps (holonomic), the turn-and-drive of a compass step, or `control_period`
@@ -218,10 +220,11 @@ class BulletMazeEnv(gym.Env[Any, Any]):
       `TypeError`; a bool is not a number):
       * `bullet_maze.TaskParams` (section V.A): `step_size`, `noise_variance`, `goal_reward`,
         `collision_reward`, `step_reward`;
-      * `bullet_maze.PhysicsParams` (dynamic mode): `time_step`, `substeps`,
-        `solver_iterations`, `revert_on_collision`, `max_turn_substeps`,
-        `max_drive_substeps` (a robot file's `[physics]` may set its own `time_step` and
-        `solver_iterations`, per action set: the husky's compass steps run at 40 Hz);
+      * `bullet_maze.PhysicsParams` (dynamic mode, and `contact_release` for the kinematic
+        sweep): `time_step`, `substeps`, `solver_iterations`, `revert_on_collision`,
+        `max_turn_substeps`, `max_drive_substeps`, `contact_release` (a robot file's
+        `[physics]` may set its own `time_step` and `solver_iterations`, per action set: the
+        husky's compass steps run at 40 Hz);
       * `bullet_maze.ActionParams`: `control_period`;
       * `bullet_maze.LidarParams`: `lidar_rays`, `lidar_range` (a robot file may set its own
         defaults).
@@ -344,7 +347,9 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             )
             if not math.isclose(self.robot.radius, self.layout.robot_radius, rel_tol=1e-6):
                 validate_layout(self.layout, self.robot.radius)
-            self.world = World(self._client, self.layout, self.robot.radius)
+            self.world = World(
+                self._client, self.layout, self.robot.radius, self.physics.contact_release
+            )
             self.lidar = (
                 Lidar(self.world.pieces(), lidar_params, self.robot.radius)
                 if observation.endswith("lidar")

@@ -131,7 +131,8 @@ class TaskParams:
 
 @dataclass(frozen=True)
 class PhysicsParams:
-    """Settings of ``mode="dynamic"``; every field is a keyword argument of the env."""
+    """Settings of ``mode="dynamic"`` and of the kinematic sweep (``contact_release``); every
+    field is a keyword argument of the env."""
 
     time_step: float = 1.0 / 240.0
     """pybullet's fixed time step in seconds (its default, 240 Hz)."""
@@ -150,6 +151,13 @@ class PhysicsParams:
     husky's 40 Hz compass physics a quarter turn takes about 35)."""
     max_drive_substeps: int = 240
     """Upper bound on the physics steps a wheeled robot may spend driving one step."""
+    contact_release: bool = True
+    """The kinematic sweep (``World.sweep_collides``, both modes' exact moves): a robot within
+    the contact tolerance of a solid may still move away from it or along it; only a move
+    towards it is a collision. False keeps the sweep as it was before 2026-12-07, which refused
+    every move that started inside the band, so a robot whose move ended there was held, every
+    action a collision, for the rest of the episode (issue 9, part 31): only to reproduce
+    results recorded before the fix."""
 
     def __post_init__(self) -> None:
         if not (
@@ -171,3 +179,5 @@ class PhysicsParams:
                 )
         if not isinstance(self.revert_on_collision, bool):
             raise TypeError(f"revert_on_collision must be a bool, got {self.revert_on_collision!r}")
+        if not isinstance(self.contact_release, bool):
+            raise TypeError(f"contact_release must be a bool, got {self.contact_release!r}")

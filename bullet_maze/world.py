@@ -115,10 +115,15 @@ class Piece(NamedTuple):
 class World:
     """A layout's bodies in the pybullet client ``client``; see the module docstring."""
 
-    def __init__(self, client: int, layout: MazeLayout, robot_radius: float) -> None:
+    def __init__(
+        self, client: int, layout: MazeLayout, robot_radius: float, contact_release: bool = True
+    ) -> None:
         self.client = client
         self.layout = layout
         self.robot_radius = robot_radius
+        self.contact_release = contact_release
+        """``PhysicsParams.contact_release``: a piece within the tolerance stops only a move
+        towards it (False: every move, the sweep before 2026-12-07)."""
         self.solid_ids = self._build_solids()
         self._solid_set = frozenset(self.solid_ids)
         self._single = self.solid_ids[0] if len(self.solid_ids) == 1 else None
@@ -362,6 +367,12 @@ class World:
         tolerance for the pieces it did not see while q is within ``CELL_REACH`` of c, clears
         any move whose two ends satisfy them (the bound is linear along the move, so its ends
         decide). A move the cached bounds cannot clear gets the queries above.
+
+        A piece already within the tolerance stops only a move towards it (u . n < 0): the
+        advance aims half-way into the band, so a move may end inside it, and a robot resting
+        against a wall must still be able to leave it. With ``contact_release`` False, such a
+        piece stops every move, as before 2026-12-07: a robot that ended a move inside the band
+        was held there for the rest of the episode, every action a collision (issue 9, part 31).
         """
         if self.certified_free(x0, y0, x1, y1):
             return False
@@ -378,10 +389,10 @@ class World:
             advance = math.inf
             for point in points:
                 distance = point[8] / METRES_PER_UNIT
-                if distance < CONTACT_TOLERANCE:
-                    return True
                 normal = point[7]
                 rate = ux * normal[0] + uy * normal[1]
+                if distance < CONTACT_TOLERANCE and (rate < 0.0 or not self.contact_release):
+                    return True
                 if rate < 0.0:
                     # Aim half-way into the tolerance band, so that a move into a wall ends
                     # with one more query instead of creeping up to the band's edge.

@@ -74,7 +74,7 @@ def test_the_mirrored_queries_answer_as_sweep_collides(maze: str | None) -> None
             assert _world_state(worlds[1]) == _world_state(worlds[0]), i
             if not expected:
                 x, y = x1, y1
-        assert decided > 300  # the mirrored lines answered many of them
+        assert decided > 150  # the mirrored lines answered many of them
         assert unseen > 100
     finally:
         for env in envs:

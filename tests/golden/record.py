@@ -28,6 +28,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+from collections.abc import Iterable
 from pathlib import Path
 
 import gymnasium as gym
@@ -39,8 +40,45 @@ ROOT = HERE.parent.parent
 FIG4_RUNS = {
     "paper_fig4_short": ["--runs", "2", "--episodes", "40", "--max-episode-steps", "1500"],
     "paper_fig4_medium": ["--runs", "2", "--episodes", "400"],
+    "paper_fig4_short_release": ["--runs", "2", "--episodes", "40", "--max-episode-steps", "1500"],
 }
 """Folder name -> the ``run.py experiment paper_fig4`` options that made it."""
+
+FIG4_LEGACY = frozenset({"paper_fig4_short", "paper_fig4_medium"})
+"""The folders recorded at 3bdcf5f, before ``PhysicsParams.contact_release``: they run with
+``contact_release = false``, the sweep of that time (two of the short runs held a robot against
+a wall, every action a collision, until the episode's cap). ``paper_fig4_short_release`` is
+the same short run with today's sweep (2026-12-07, issue 9, part 31)."""
+
+
+def run_fig4(folder: str, out: Path) -> None:
+    """``run.py experiment paper_fig4`` with ``FIG4_RUNS[folder]``'s options into ``out`` (a
+    legacy folder's config, with ``contact_release = false``, is written beside ``out``)."""
+    config = "paper_fig4"
+    if folder in FIG4_LEGACY:
+        legacy = out.parent / "paper_fig4_legacy.toml"
+        text = (ROOT / "experiments" / "paper_fig4.toml").read_text()
+        legacy.write_text(text + "\n[env.params]\ncontact_release = false\n")
+        config = str(legacy)
+    subprocess.run(
+        [
+            sys.executable,
+            str(ROOT / "run.py"),
+            "experiment",
+            config,
+            *FIG4_RUNS[folder],
+            "--workers",
+            "2",
+            "--out",
+            str(out),
+            "--no-progress",
+        ],
+        check=True,
+        cwd=ROOT,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
+
 
 ROLLOUT_CASES = (
     # (layout, robot, mode, steps)
@@ -68,34 +106,22 @@ ROLLOUT_COLUMNS = (
 )
 
 
-def record_fig4() -> None:
-    for folder, options in FIG4_RUNS.items():
+def record_fig4(folders: Iterable[str] = FIG4_RUNS) -> None:
+    for folder in folders:
+        options = FIG4_RUNS[folder]
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "out"
-            subprocess.run(
-                [
-                    sys.executable,
-                    str(ROOT / "run.py"),
-                    "experiment",
-                    "paper_fig4",
-                    *options,
-                    "--workers",
-                    "2",
-                    "--out",
-                    str(out),
-                    "--no-progress",
-                ],
-                check=True,
-                cwd=ROOT,
-                stdout=subprocess.DEVNULL,
-            )
+            run_fig4(folder, out)
             target = HERE / folder
             shutil.rmtree(target, ignore_errors=True)
             target.mkdir()
             for csv in sorted((out / "runs").glob("*.csv")):
                 shutil.copyfile(csv, target / csv.name)
             (target / "OPTIONS").write_text(
-                "python run.py experiment paper_fig4 " + " ".join(options) + "\n"
+                "python run.py experiment paper_fig4 "
+                + " ".join(options)
+                + (" (with [env.params] contact_release = false)" if folder in FIG4_LEGACY else "")
+                + "\n"
             )
 
 

@@ -10,8 +10,6 @@ from __future__ import annotations
 
 import importlib.util
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -26,24 +24,7 @@ _spec.loader.exec_module(record)
 
 def _fig4_matches(folder: str, tmp_path: Path) -> None:
     out = tmp_path / folder
-    subprocess.run(
-        [
-            sys.executable,
-            str(record.ROOT / "run.py"),
-            "experiment",
-            "paper_fig4",
-            *record.FIG4_RUNS[folder],
-            "--workers",
-            "2",
-            "--out",
-            str(out),
-            "--no-progress",
-        ],
-        check=True,
-        cwd=record.ROOT,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.PIPE,
-    )
+    record.run_fig4(folder, out)
     golden = sorted((HERE / folder).glob("*.csv"))
     computed = sorted((out / "runs").glob("*.csv"))
     assert [p.name for p in computed] == [p.name for p in golden]
@@ -52,7 +33,19 @@ def _fig4_matches(folder: str, tmp_path: Path) -> None:
 
 
 def test_paper_fig4_short_run_csvs_are_byte_identical(tmp_path: Path) -> None:
+    """As recorded at 3bdcf5f, with that day's sweep (``contact_release = false``)."""
     _fig4_matches("paper_fig4_short", tmp_path)
+
+
+def test_paper_fig4_short_run_csvs_with_today_s_sweep_are_byte_identical(tmp_path: Path) -> None:
+    """The same runs with ``contact_release`` (the default since 2026-12-07): only the two runs
+    that the old sweep held against a wall differ from the legacy folder."""
+    _fig4_matches("paper_fig4_short_release", tmp_path)
+    legacy, today = HERE / "paper_fig4_short", HERE / "paper_fig4_short_release"
+    differ = sorted(
+        p.name for p in legacy.glob("*.csv") if p.read_bytes() != (today / p.name).read_bytes()
+    )
+    assert differ == ["eps-greedy-0.015__2730688458.csv", "grid-30x30__2244058087.csv"]
 
 
 @pytest.mark.slow

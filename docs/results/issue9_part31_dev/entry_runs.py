@@ -8,7 +8,7 @@ convergence episode (``experiments.statistics.convergence_episode``, None: not c
 the training episodes at the 5,000-step cap from episode 300 on (with those of them that were
 trial episodes).
 
-    ENTRY=0|1 python entry_runs.py TASK OUT SEED [SEED ...]
+    ENTRY=0|1 python entry_runs.py TASK OUT SEED [SEED ...]   (ENTRY=1 only at d885de3)
     ENTRY=0|1 python entry_runs.py maze:LAYOUT OUT SEED [SEED ...]
 """
 
@@ -38,7 +38,9 @@ ENTRY = os.environ.get("ENTRY", "1") == "1"
 
 def make_agent(env, seed: int):
     general = preset("general")
-    config = dataclasses.replace(general.config, greedy_tie_trial_on_entry=ENTRY)
+    # the switch existed only at d885de3 (removed since): ENTRY=0 is the preset as it stands
+    fields = {"greedy_tie_trial_on_entry": True} if ENTRY else {}
+    config = dataclasses.replace(general.config, **fields)
     return tree_agent_class(config)(
         env.observation_space, env.action_space, general.make_exploration(), seed, config
     )
