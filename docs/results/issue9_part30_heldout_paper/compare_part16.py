@@ -1,3 +1,13 @@
+"""Compare two `paper` run folders of the general preset run by run (the report's convergence
+rule from ``experiments.statistics``): runs converged, median episode, runs by episode 300,
+final mean and worst final / optimum, AUC, and how many runs' finals are the same.
+
+    python compare_part16.py NEW_FOLDER OLD_FOLDER   (from the project root, PYTHONPATH=.)
+
+Part 30 wrote ``compare_part16.txt`` (part 30's preset against part 16's runs, which parts 17-29
+left the same) and part 31 ``../issue9_part31_heldout_paper/compare_old_sweep.txt`` (part 30's
+preset with today's sweep against the old one).
+"""
 import csv, sys, statistics
 from pathlib import Path
 import numpy as np

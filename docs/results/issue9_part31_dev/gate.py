@@ -3,6 +3,8 @@
 Round 1: ``r1_ac.jsonl`` (``greedy_tie_trial_follow``) against part 30's round 2 rows.
 Round 2: ``r2_*.jsonl`` (``greedy_tie_trial_on_entry``); the mazes against part 30's arm run
 beside it (``r2_maze_part30.jsonl``), classic control against part 30's round 2 rows.
+Round 3: part 30's preset with today's sweep (``r3_maze_release.jsonl``) against the same preset
+with the old one (``r2_maze_part30.jsonl``).
 
     python gate.py   (from this folder)
 """
@@ -47,8 +49,8 @@ def geo(values: list[float]) -> float:
     return math.exp(statistics.mean(math.log(v) for v in values))
 
 
-def mazes(out: list[str]) -> None:
-    new = {(r["task"], r["seed"]): r for r in rows(HERE / "r2_maze.jsonl")}
+def mazes(out: list[str], new_file: str = "r2_maze.jsonl", ref: str = "part 30") -> None:
+    new = {(r["task"], r["seed"]): r for r in rows(HERE / new_file)}
     old = {(r["task"], r["seed"]): r for r in rows(HERE / "r2_maze_part30.jsonl")}
     keys = sorted(set(new) & set(old))
     if not keys:
@@ -57,15 +59,15 @@ def mazes(out: list[str]) -> None:
     out.append(f"mazes: {len(keys)} runs with both arms")
     for label, key in (("greedy / optimum", "sel"), ("training final / optimum", "final")):
         a, b = geo([new[k][key] for k in keys]), geo([old[k][key] for k in keys])
-        out.append(f"  {label}: geometric mean {a:.3f} (part 30 {b:.3f}, {100 * (a / b - 1):+.1f} %)")
+        out.append(f"  {label}: geometric mean {a:.3f} ({ref} {b:.3f}, {100 * (a / b - 1):+.1f} %)")
     for label, key in (("capped greedy runs", "sel_capped"), ("capped training episodes from 300", "late_capped")):
         out.append(
             f"  {label}: {sum(new[k][key] > 0 if 'greedy' in label else new[k][key] for k in keys)} "
-            f"(part 30 {sum(old[k][key] > 0 if 'greedy' in label else old[k][key] for k in keys)})"
+            f"({ref} {sum(old[k][key] > 0 if 'greedy' in label else old[k][key] for k in keys)})"
         )
     conv = sum(new[k]["converged"] is not None for k in keys)
     conv_old = sum(old[k]["converged"] is not None for k in keys)
-    out.append(f"  converged runs: {conv} (part 30 {conv_old})")
+    out.append(f"  converged runs: {conv} ({ref} {conv_old})")
     same = sum(new[k]["final"] == old[k]["final"] and new[k]["sel"] == old[k]["sel"] for k in keys)
     out.append(f"  runs with the same final and greedy score in both arms: {same}")
     for k in keys:
@@ -85,6 +87,8 @@ def main() -> None:
     classic(out, "Acrobot 0-9", HERE / "r2_ac.jsonl", PART30 / "r2_ac.jsonl", -100)
     classic(out, "MountainCar 10-49", HERE / "r2_mc.jsonl", PART30 / "r2_mc.jsonl", -110)
     classic(out, "CartPole 0-9", HERE / "r2_cp.jsonl", PART30 / "r2_cp.jsonl", 475)
+    out += ["", "## Round 3: part 30's preset, today's sweep / the old sweep (a measurement)"]
+    mazes(out, "r3_maze_release.jsonl", "old sweep")
     (HERE / "gate.txt").write_text("\n".join(out) + "\n")
 
 
