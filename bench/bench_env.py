@@ -155,6 +155,9 @@ def speed(steps: int, rounds: int, wall: bool) -> None:
     # Each env beside its reference, so that the two run next to each other in every round.
     runners: dict[str, Callable[[], float]] = {
         "kinematic, disc": env_runner("BulletMaze-v0", steps),
+        "kinematic, disc, sweep before 2026-12-07": env_runner(
+            "BulletMaze-v0", steps, contact_release=False
+        ),
         "kinematic, husky": env_runner("BulletMaze-v0", steps, robot="husky"),
         "kinematic, disc, corridors": env_runner("BulletMaze-corridors-v0", steps),
         "dynamic, disc": env_runner("BulletMaze-v0", dyn, mode="dynamic"),
@@ -217,6 +220,14 @@ def speed(steps: int, rounds: int, wall: bool) -> None:
     ):
         median, low, high = paired_ratio(rates, slow, fast)
         print(f"  {label:52s} {median:5.2f}  ({low:.2f}-{high:.2f}; {target})")
+    # contact_release (issue 9, part 31): the same random walk, which the old sweep could hold
+    # against a wall; a held robot's steps are refused moves, so this compares walks, not only
+    # the sweep's extra comparison
+    median, low, high = paired_ratio(
+        rates, "kinematic, disc", "kinematic, disc, sweep before 2026-12-07"
+    )
+    label = "kinematic disc step time, today's sweep / the old one"
+    print(f"  {label:52s} {median:5.2f}  ({low:.2f}-{high:.2f}; no target)")
     if pointmaze in rates:
         for label, name, target in (
             ("kinematic / PointMaze", "kinematic, disc", ">= 5"),
