@@ -260,6 +260,7 @@ def test_valid_action_types(make_env: Callable[..., gym.Env]) -> None:
         ({"substeps": True}, TypeError, r"substeps must be a number, got True"),
         ({"control_period": False}, TypeError, r"control_period must be a number"),
         ({"revert_on_collision": 1}, TypeError, r"revert_on_collision must be a bool, got 1"),
+        ({"contact_release": "no"}, TypeError, r"contact_release must be a bool, got 'no'"),
         ({"render_width": True}, TypeError, r"render_width = True: must be an integer"),
         ({"render_height": 100_000}, ValueError, r"render_height = 100000 is larger than 2048"),
         ({"speed": 3}, TypeError, r"unknown keyword argument\(s\) \['speed'\].*'step_size'"),

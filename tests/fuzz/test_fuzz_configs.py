@@ -48,7 +48,12 @@ VALID: dict[str, Any] = {
         "robot": "disc",
         "mode": "kinematic",
         "max_episode_steps": 100,
-        "params": {"step_size": 5.0, "noise_variance": 0.3, "revert_on_collision": True},
+        "params": {
+            "step_size": 5.0,
+            "noise_variance": 0.3,
+            "revert_on_collision": True,
+            "contact_release": True,
+        },
     },
     "agent": {"alpha": 0.3, "gamma": 0.99, "split_min_samples": 50, "hold_exploration": True},
     "strategy": [
