@@ -44,7 +44,7 @@ import numpy as np
 import pybullet as pb
 
 from bullet_maze.layout_types import MazeLayout
-from bullet_maze.params import BOUNDARY_THICKNESS, METRES_PER_UNIT, WALL_HEIGHT
+from bullet_maze.params import BOUNDARY_THICKNESS, METRES_PER_UNIT, WALL_HEIGHT, PhysicsParams
 
 CONTACT_TOLERANCE = 1e-3
 """Maze units: a robot closer than this to a solid surface touches it (a collision). A move
@@ -116,7 +116,11 @@ class World:
     """A layout's bodies in the pybullet client ``client``; see the module docstring."""
 
     def __init__(
-        self, client: int, layout: MazeLayout, robot_radius: float, contact_release: bool = True
+        self,
+        client: int,
+        layout: MazeLayout,
+        robot_radius: float,
+        contact_release: bool = PhysicsParams.contact_release,
     ) -> None:
         self.client = client
         self.layout = layout

@@ -48,6 +48,14 @@ def _nearest(world: object, x: float, y: float) -> tuple[float, float, float]:
     return best[8] / METRES_PER_UNIT, best[7][0], best[7][1]
 
 
+def _into_band(world: object, x: float, y: float) -> tuple[float, float]:
+    """The point a straight move from (x, y) towards its nearest solid reaches when it stops
+    three quarters of the way into the contact band."""
+    distance, nx, ny = _nearest(world, x, y)
+    travel = distance - 0.75 * CONTACT_TOLERANCE
+    return x - travel * nx, y - travel * ny
+
+
 @pytest.mark.parametrize("maze", ["paper", "rooms:seed=2,door=14,loops=0", "forest:seed=0"])
 def test_a_robot_resting_inside_the_contact_band_can_leave_it(maze: str) -> None:
     """A move may end inside the tolerance band (the advance aims half-way into it). From
@@ -61,11 +69,9 @@ def test_a_robot_resting_inside_the_contact_band_can_leave_it(maze: str) -> None
         points = points[clearance(layout, points) > radius + 1.0]
         checked = 0
         for x, y in points[:40]:
-            distance, nx, ny = _nearest(world, x, y)
-            if distance > 60.0:
+            if _nearest(world, x, y)[0] > 60.0:
                 continue
-            travel = distance - 0.75 * CONTACT_TOLERANCE
-            x1, y1 = x - travel * nx, y - travel * ny
+            x1, y1 = _into_band(world, x, y)
             if world.sweep_collides(x, y, x1, y1):
                 continue  # another solid in the way
             end, mx, my = _nearest(world, x1, y1)
@@ -90,9 +96,9 @@ def test_a_step_from_inside_the_band_moves_away_from_the_wall() -> None:
     try:
         env.reset(seed=0)
         x, y = env._x, env._y
-        distance, nx, ny = _nearest(env.world, x, y)
+        _, nx, ny = _nearest(env.world, x, y)
         assert (abs(nx), abs(ny)) == pytest.approx((0.0, 1.0), abs=1e-9)  # a wall below or above
-        env._x, env._y = x, y - ny * (distance - 0.75 * CONTACT_TOLERANCE)
+        env._x, env._y = _into_band(env.world, x, y)
         moves = {a: env._moves[a] for a in range(4)}
         into = next(a for a, (dx, dy) in moves.items() if dy * ny < 0 and dx == 0)
         away = next(a for a, (dx, dy) in moves.items() if dy * ny > 0 and dx == 0)
@@ -115,11 +121,8 @@ def test_the_sweep_before_the_fix_stays_available_and_the_switch_is_checked() ->
     try:
         env.reset(seed=0)
         x, y = env._x, env._y
-        distance, nx, ny = _nearest(env.world, x, y)
-        x1, y1 = (
-            x - nx * (distance - 0.75 * CONTACT_TOLERANCE),
-            y - ny * (distance - 0.75 * CONTACT_TOLERANCE),
-        )
+        _, nx, ny = _nearest(env.world, x, y)
+        x1, y1 = _into_band(env.world, x, y)
         assert not env.world.sweep_collides(x, y, x1, y1)
         for dx, dy in ((nx, ny), (-ny, nx), (ny, -nx), (-nx, -ny)):
             assert env.world.sweep_collides(x1, y1, x1 + 2.0 * dx, y1 + 2.0 * dy)
