@@ -338,6 +338,14 @@ class TreeConfig:
     without the option, so the comparison goes on with the kinds' shares reversed. Returns are
     kept by kind, not by position in the group. False: one episode in ``every`` tries z'
     whatever the comparison says (part 30)."""
+    greedy_tie_trial_avoid_collided: bool = False
+    """``greedy_tie_trial`` (beyond the paper): in a trial episode, a choice the trial made
+    (one the strategy did not make) whose epoch ended in a collision (``info[collision_key]``)
+    without leaving the leaf is not made again from that leaf in that episode; the strategy's
+    choice stands there. The trial's standard errors and ancestors' sums are cached for the
+    episode, so without this a tie that sends the robot into a wall can hold for the whole
+    episode (part 32). Changes nothing where the env reports no collision. False: the trial
+    remakes its choice each time (part 30)."""
     novelty_cells: int | None = None
     """Novel ends until the first terminals (beyond the paper; :mod:`agent.novelty`): the
     model of ``planning = "sweep"`` counts the inputs it has seen on a grid of this many cells
@@ -715,6 +723,11 @@ class TreeConfig:
         follow = self.greedy_tie_trial_follow
         if not isinstance(follow, bool):
             raise ValueError(f"TreeConfig.greedy_tie_trial_follow must be a bool, got {follow!r}")
+        avoid = self.greedy_tie_trial_avoid_collided
+        if not isinstance(avoid, bool):
+            raise ValueError(
+                f"TreeConfig.greedy_tie_trial_avoid_collided must be a bool, got {avoid!r}"
+            )
         if trial is None:
             return
         if (

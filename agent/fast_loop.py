@@ -132,6 +132,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "greedy_tie_trial_margin": (float, int),
     "greedy_tie_trial_every": int,
     "greedy_tie_trial_follow": bool,
+    "greedy_tie_trial_avoid_collided": bool,
     # a table needs integer inputs, which turn the loop off (the kernel's inputs are positions)
     "table_cells": (int, type(None)),
     # a positive value makes the tree a GatedPartitionTree, whose type turns the loop off

@@ -28,6 +28,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections import deque
+from collections.abc import Collection
 from os import PathLike
 from pathlib import Path
 from typing import Any
@@ -433,12 +434,14 @@ class TreeEnsembleAgent(TreeAgent):
 
         first_only = cfg.ensemble_decisions == "first"
         trial = self.tie_trial is not None and self.tie_trial.tries(self.episodes_done)
+        avoid_collided = trial and cfg.greedy_tie_trial_avoid_collided
+        collided_choices: set[tuple[int, int]] = set()  # (tree 0's leaf, action) of the trial
         x = [float(v) for v in obs]
         leaves = self._leaves(x)
         row = self.mean_row(leaves)
-        action = strategy.select(leaves[0], row, rng)
+        proposed = action = strategy.select(leaves[0], row, rng)
         if trial:
-            action = self._trial_choice(leaves, row, action)
+            action = self._trial_choice(leaves, row, action, collided_choices)
         hold = hold_exploration and strategy.explored
         self._explored = strategy.explored
         eps_sum = strategy.epsilon(leaves[0])
@@ -479,6 +482,8 @@ class TreeEnsembleAgent(TreeAgent):
                 inside = (
                     redecide and not hold and not changed and not (collided and end_on_collision)
                 )
+                if avoid_collided and collided and not changed and action != proposed:
+                    collided_choices.add((leaves[0], action))
                 if measure:  # decision_on_failure, failure_gamma; before this epoch's updates
                     if terminated:
                         self.terminal_reward_sum += r
@@ -511,14 +516,14 @@ class TreeEnsembleAgent(TreeAgent):
                 current = list(leaves)
                 held = [[] for _ in members]
                 if inside and not any(splits):
-                    action = greedy_action(self.mean_row(leaves), rng)
+                    proposed = action = greedy_action(self.mean_row(leaves), rng)
                     hold = False
                     self._explored = False
                 else:
                     row = self.mean_row(leaves)
-                    action = strategy.select(leaves[0], row, rng)
+                    proposed = action = strategy.select(leaves[0], row, rng)
                     if trial:
-                        action = self._trial_choice(leaves, row, action)
+                        action = self._trial_choice(leaves, row, action, collided_choices)
                     hold = hold_exploration and strategy.explored
                     self._explored = strategy.explored
                 eps_sum += strategy.epsilon(leaves[0])
@@ -551,7 +556,13 @@ class TreeEnsembleAgent(TreeAgent):
         self.episodes_done += 1
         return stats
 
-    def _trial_choice(self, leaves: list[int], row: list[float], action: int) -> int:
+    def _trial_choice(
+        self,
+        leaves: list[int],
+        row: list[float],
+        action: int,
+        avoided: Collection[tuple[int, int]] = (),
+    ) -> int:
         """``TreeConfig.greedy_tie_trial`` in a trial episode: the strategy's ``action`` for the
         trees' ``leaves`` (``row`` their mean Q-bar row), or, where it was a greedy choice that
         ``predict`` would test for ties, the choice of ``predict``'s rule at the trial width z'
@@ -561,7 +572,9 @@ class TreeEnsembleAgent(TreeAgent):
         other such action is off the strategy's list. Otherwise the actions tied with the best
         of those within z' standard errors (``greedy_tie_errors``' test) are compared by the
         ancestors at z' (``greedy_tie_ancestors``). The standard errors and the ancestors' sums
-        are read as ``predict`` caches them, afresh after each episode and each split."""
+        are read as ``predict`` caches them, afresh after each episode and each split. A choice
+        in ``avoided`` (pairs of tree 0's leaf and an action:
+        ``TreeConfig.greedy_tie_trial_avoid_collided``) gives way to the strategy's."""
         trial = self.tie_trial
         assert trial is not None
         if self.exploration.explored or self.holds_one_input(leaves[0]):
@@ -577,7 +590,8 @@ class TreeEnsembleAgent(TreeAgent):
         tied = self._tied(self.members, leaves, row, allowed, trial.trial)
         if len(tied) < 2:
             return action
-        return self._ancestors_choice(self.members, leaves, tied, trial.trial)
+        choice = self._ancestors_choice(self.members, leaves, tied, trial.trial)
+        return action if (leaves[0], choice) in avoided else choice
 
 
 def tree_agent_class(config: TreeConfig) -> type[TreeAgent]:

@@ -9,12 +9,16 @@ import json
 import math
 import statistics
 from pathlib import Path
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
 import pytest
+from gymnasium import spaces
+from gymnasium.wrappers import TimeLimit
 
 from agent import TreeAgent, TreeConfig, adapt_env, general_as_of, preset
+from agent.exploration import Greedy
 from agent.serialization import config_from_data
 from agent.tie_trial import RunningMoments, TieTrial
 from agent.tree_ensemble import TreeEnsembleAgent, tree_agent_class
@@ -115,9 +119,9 @@ def test_following_trains_at_the_trial_width_once_adopted() -> None:
     episodes: set[int] = set()
     choose = agent._trial_choice
 
-    def watched(leaves: list[int], row: list[float], action: int) -> int:
+    def watched(leaves: list[int], row: list[float], action: int, avoided: Any = ()) -> int:
         episodes.add(agent.episodes_done)
-        return choose(leaves, row, action)
+        return choose(leaves, row, action, avoided)
 
     agent._trial_choice = watched  # type: ignore[method-assign]
     agent.learn(env, 8, reset_seed=6)  # episodes 2-9: groups 2-5 and 6-9
@@ -144,6 +148,8 @@ def test_following_trains_at_the_trial_width_once_adopted() -> None:
         ({"greedy_tie_trial_follow": 1}, "greedy_tie_trial_follow must be a bool, got 1"),
         ({"greedy_tie_trial_follow": "yes"}, "greedy_tie_trial_follow must be a bool"),
         ({"greedy_tie_trial_follow": None}, "greedy_tie_trial_follow must be a bool"),
+        ({"greedy_tie_trial_avoid_collided": 1}, "greedy_tie_trial_avoid_collided must be a bool"),
+        ({"greedy_tie_trial_avoid_collided": "no"}, "avoid_collided must be a bool, got 'no'"),
     ],
 )
 def test_bad_settings_are_refused_by_name(fields: dict[str, object], message: str) -> None:
@@ -181,8 +187,8 @@ def test_trial_episodes_break_ties_at_the_trial_width_and_are_counted() -> None:
     calls: list[tuple[int, int, int]] = []
     choose = tried._trial_choice
 
-    def watched(leaves: list[int], row: list[float], action: int) -> int:
-        out = choose(leaves, row, action)
+    def watched(leaves: list[int], row: list[float], action: int, avoided: Any = ()) -> int:
+        out = choose(leaves, row, action, avoided)
         calls.append((tried.episodes_done, action, out))
         return out
 
@@ -288,3 +294,87 @@ def test_a_trial_entry_without_the_option_is_refused(tmp_path: Path) -> None:
     np.savez(bad, metadata=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **arrays)
     with pytest.raises(ValueError, match=r"bad\.npz.*tie_trial must be present exactly"):
         TreeAgent.load(bad)
+
+
+class Wall(gym.Env[np.ndarray, int]):
+    """A corridor from x = 0.05 to the goal at 1: action 1 moves 0.1 to the right (-0.01),
+    action 0 pushes into the wall beside it (-1, ``info["collision"]``, no move); the maze's
+    rewards, one dimension."""
+
+    observation_space = spaces.Box(0.0, 1.0, (1,), dtype=np.float64)
+    action_space = spaces.Discrete(2)
+
+    def __init__(self, report: bool = True) -> None:
+        self.report = report
+        self.x = 0.05
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        super().reset(seed=seed)
+        self.x = 0.05
+        return np.array([self.x]), {}
+
+    def step(self, action: int) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        if action == 0:
+            info = {"collision": True} if self.report else {}
+            return np.array([self.x]), -1.0, False, False, info
+        self.x = min(self.x + 0.1, 1.0)
+        return np.array([self.x]), -0.01, self.x >= 1.0, False, {}
+
+
+Choice = tuple[int, int, int, int]
+"""A trial's choice: episode, tree 0's leaf, the strategy's action, the trial's."""
+
+
+def _wall_run(avoid: bool, report: bool = True) -> tuple[list[Any], list[Choice]]:
+    """Three episodes (the second a trial) of an agent whose trial always breaks its tie
+    towards the wall, with the trial's choices: the ties, the ancestors' choice and the
+    stored-epoch counts are fixed by hand, since in a run they are cached for the episode and
+    the trial can repeat itself."""
+    env = TimeLimit(Wall(report), max_episode_steps=200)
+    config = dataclasses.replace(
+        preset("general").config,
+        greedy_tie_trial=2.0,
+        greedy_tie_trial_episodes=0,
+        greedy_tie_trial_every=2,
+        greedy_tie_trial_avoid_collided=avoid,
+    )
+    agent = TreeEnsembleAgent(env.observation_space, env.action_space, Greedy(), 0, config)
+    agent.fewest_epochs = lambda members, leaves: [5, 5]  # type: ignore[method-assign]
+    agent.holds_one_input = lambda leaf: False  # type: ignore[method-assign]
+    agent._tied = lambda members, leaves, row, allowed, z: list(allowed)  # type: ignore[method-assign]
+    agent._ancestors_choice = lambda members, leaves, tied, z: 0  # type: ignore[method-assign]
+    choices: list[Choice] = []
+    choose = agent._trial_choice
+
+    def watched(leaves: list[int], row: list[float], action: int, avoided: Any = ()) -> int:
+        out = choose(leaves, row, action, avoided)
+        choices.append((agent.episodes_done, leaves[0], action, out))
+        return out
+
+    agent._trial_choice = watched  # type: ignore[method-assign]
+    return agent.learn(env, 3, reset_seed=0), choices
+
+
+def test_a_trial_choice_that_collided_is_not_remade_in_its_leaf() -> None:
+    pressed, _ = _wall_run(avoid=False)
+    assert pressed[1].truncated
+    assert pressed[1].steps == pressed[1].collisions == 200
+    history, choices = _wall_run(avoid=True)
+    assert history[0] == pressed[0]  # a plain episode is today's
+    trial = history[1]
+    assert not trial.truncated
+    assert trial.success
+    assert {episode for episode, *_ in choices} == {1}
+    remade = [(leaf, out) for _, leaf, proposed, out in choices if out != proposed]
+    walls = [(leaf, out) for leaf, out in remade if out == 0]
+    assert walls  # the trial sent the robot into the wall ...
+    assert len(walls) == len(set(walls))  # ... but once at most from each leaf
+    assert trial.steps - trial.collisions == 10  # every other step moved on
+
+
+def test_avoiding_collided_choices_needs_the_env_s_collision_flag() -> None:
+    silent, _ = _wall_run(avoid=True, report=False)
+    assert silent == _wall_run(avoid=False, report=False)[0]
+    assert silent[1].truncated  # nothing tells the trial it pressed into the wall
