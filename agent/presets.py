@@ -109,7 +109,8 @@ GENERAL = Preset(
     "every terminal is measured a failure, a greedy choice among actions with two stored epochs "
     "(one in a table's cell), where the tree's ancestors, compared leaf by leaf, break the "
     "actions' statistical ties, and from episode 300 one training episode in 4 that breaks "
-    "them at twice the width, which the greedy choice takes up where those episodes earn more",
+    "them at twice the width (never remaking, in an episode, a choice that collided without "
+    "leaving its leaf), which the greedy choice takes up where those episodes earn more",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
@@ -142,6 +143,7 @@ GENERAL = Preset(
         greedy_tie_trial_episodes=300,
         greedy_tie_trial_every=4,
         greedy_tie_trial_margin=2.0,
+        greedy_tie_trial_avoid_collided=True,
     ),
     "adaptive+tabu",
 )
@@ -169,6 +171,7 @@ GENERAL_CHANGES: dict[int, dict[str, Any]] = {
         "greedy_tie_ancestors": None,
     },
     30: {"greedy_tie_trial": None},
+    32: {"greedy_tie_trial_avoid_collided": False},
 }
 """The fields that issue 9's parts 8 and later changed in the general preset, each with its value
 before that part (docs/results.md, "A learner that is fast everywhere"; part 13 changed none).
@@ -181,7 +184,8 @@ splits"), so it changed none. Part 22 changed none; parts 23, 24, 25 and 27 chan
 greedy choice of ``predict``, never a training step (for part 24's, part 23's value of
 ``greedy_min_epochs`` is 1). Part 26 changed none; parts 28 and 29 changed none. Part 30's
 changes training from episode 300 on (one episode in 4 breaks its greedy ties at z 2), and
-``predict``'s width where those episodes earn more."""
+``predict``'s width where those episodes earn more. Part 31 changed none; part 32 changes only
+trial episodes (from episode 300 on) where the env reports collisions."""
 
 
 def general_as_of(part: int) -> TreeConfig:

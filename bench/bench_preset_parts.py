@@ -66,6 +66,9 @@ PARTS: dict[int, str] = {
     30: "greedy_tie_trial 2: from episode 300, one training episode in 4 breaks its greedy "
     "ties at z 2 (the leaf's standard errors and the ancestors' sums at each decision); a run "
     "of at most 300 episodes is the same run, so time it with --episodes 600",
+    32: "greedy_tie_trial_avoid_collided: a trial episode keeps a set of the choices that "
+    "collided without leaving their leaf; only runs past episode 300 on a maze change, so time "
+    "it with --episodes 600",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

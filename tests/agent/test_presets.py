@@ -57,6 +57,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     others |= {"greedy_smoothing", "greedy_smoothing_links", "greedy_tie_errors"}  # part 25
     others |= {"greedy_tie_ancestors"}  # part 27
     others |= {"greedy_tie_trial"}  # part 30 (its companions stay at their defaults)
+    others |= {"greedy_tie_trial_avoid_collided"}  # part 32
     assert changed <= beyond | table_one | others
     assert general.threshold_units == "scale"
     assert general.sweep_backups == 64  # issue 9, part 4 (docs/paper-notes.md)
@@ -238,8 +239,10 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(30) == now
-    now = dataclasses.replace(now, greedy_tie_trial=None)
+    assert general_as_of(32) == now
+    now = dataclasses.replace(now, greedy_tie_trial_avoid_collided=False)
+    assert general_as_of(31) == general_as_of(30) == now
+    now = dataclasses.replace(now, greedy_tie_trial=None, greedy_tie_trial_avoid_collided=False)
     assert general_as_of(29) == general_as_of(28) == general_as_of(27) == now
     now = dataclasses.replace(
         now,

@@ -49,9 +49,14 @@ def geo(values: list[float]) -> float:
     return math.exp(statistics.mean(math.log(v) for v in values))
 
 
-def mazes(out: list[str], new_file: str = "r2_maze.jsonl", ref: str = "part 30") -> None:
+def mazes(
+    out: list[str],
+    new_file: str | Path = "r2_maze.jsonl",
+    ref: str = "part 30",
+    old_file: str | Path = "r2_maze_part30.jsonl",
+) -> None:
     new = {(r["task"], r["seed"]): r for r in rows(HERE / new_file)}
-    old = {(r["task"], r["seed"]): r for r in rows(HERE / "r2_maze_part30.jsonl")}
+    old = {(r["task"], r["seed"]): r for r in rows(HERE / old_file)}
     keys = sorted(set(new) & set(old))
     if not keys:
         out.append("mazes: not run")
