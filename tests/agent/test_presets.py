@@ -329,6 +329,7 @@ def test_greedy_choice_comparisons_set_the_preset_against_the_part_before(
         ("greedy_ancestors_mountaincar", 26, 27102),
         ("tie_trial_classic", 29, 30101),
         ("tie_trial_mazes", 29, 30102),
+        ("trial_avoid_mazes", 31, 31108),
     ],
 )
 def test_greedy_tie_comparisons_set_the_preset_against_the_part_before(
