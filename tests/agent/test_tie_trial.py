@@ -378,3 +378,28 @@ def test_avoiding_collided_choices_needs_the_env_s_collision_flag() -> None:
     silent, _ = _wall_run(avoid=True, report=False)
     assert silent == _wall_run(avoid=False, report=False)[0]
     assert silent[1].truncated  # nothing tells the trial it pressed into the wall
+
+
+def test_avoiding_collided_choices_leaves_a_classic_task_s_run_as_it_was() -> None:
+    """Classic control reports no collisions: part 32's preset runs part 31's run there."""
+    env = adapt_env(gym.make("Acrobot-v1"))
+    fields = {"greedy_tie_trial_episodes": 2, "greedy_tie_trial_every": 2}
+    runs, remade = [], []
+    for avoid in (False, True):
+        agent = _trial_agent(env, seed=2, greedy_tie_trial_avoid_collided=avoid, **fields)
+        choose = agent._trial_choice
+
+        def watched(
+            leaves: list[int], row: list[float], action: int, avoided: Any = (), c: Any = choose
+        ) -> int:
+            out: int = c(leaves, row, action, avoided)
+            remade.append(out != action)
+            return out
+
+        agent._trial_choice = watched  # type: ignore[method-assign]
+        runs.append((agent.learn(env, 8, reset_seed=4), agent.q))
+    assert runs[0] == runs[1]
+    assert any(remade)  # the trial did remake choices, and none was held back
+    assert general_as_of(31) == dataclasses.replace(
+        preset("general").config, greedy_tie_trial_avoid_collided=False
+    )
