@@ -21,6 +21,13 @@ wrong side (each side takes its majority label) is taken, if
 Ties go to the cut nearest the middle of the leaf, then to the lower dimension and value. The
 children inherit Q-bar and the stored epochs as after any split (eqs. 11-13 choose the paper's
 splits; this rule only adds cuts). An env that reports no collisions never triggers it.
+
+With ``TreeConfig.collision_splits_collided_only`` as well, a (leaf, a) whose stored epochs all
+collided is cut too (:func:`choose_collided_only_split`): a collision says where it happened,
+but with no free epoch to cut against, the whole leaf would keep the collided value, and a long
+leaf beside one pillar would give a up along its whole length (issue 9, part 32; the dev forests
+`forest:seed=15` and `forest:seed=7`, docs/paper-notes.md, "Cuts for an action that only
+collided").
 """
 
 from __future__ import annotations
@@ -74,3 +81,44 @@ def choose_collision_split(
             if key[0] < best_errors or (best is not None and key < best):
                 best, best_errors = key, key[0]
     return None if best is None else (best[2], best[3])
+
+
+def choose_collided_only_split(
+    firsts: FloatArray,
+    collided: BoolArray,
+    low: FloatArray,
+    high: FloatArray,
+    min_width: FloatArray,
+) -> tuple[int, float] | None:
+    """``TreeConfig.collision_splits_collided_only``: the (dimension, value) that cuts off the
+    largest part of the leaf holding no first input of the collided epochs, or None.
+
+    Only where every stored epoch of (leaf, a) collided (at least one). In each dimension d,
+    with the collided first inputs spanning [lo, hi] and w = ``min_width[d]``, the candidates
+    are the cuts at lo - w (the part below, lo - w - low[d] wide, holds none of them) and at
+    hi + w (the part above, high[d] - hi - w wide); a cut is allowed when both children are at
+    least w wide. The widest empty part wins; ties go to the lower dimension, then the lower
+    side. The margin w keeps a first input that sits on the cut on its collided side.
+
+    Args:
+        firsts: ``(n, d)`` first input of each stored epoch.
+        collided: ``(n,)`` whether each epoch ended on a collision.
+        low, high: the leaf's box (``(d,)``).
+        min_width: ``(d,)`` narrowest child allowed per dimension.
+    """
+    n = len(collided)
+    if n == 0 or int(collided.sum()) != n:
+        return None
+    best: tuple[float, int, float] | None = None
+    for dim in range(firsts.shape[1]):
+        lo, hi = float(firsts[:, dim].min()), float(firsts[:, dim].max())
+        w = float(min_width[dim])
+        for value, empty in (
+            (lo - w, lo - w - float(low[dim])),
+            (hi + w, float(high[dim]) - hi - w),
+        ):
+            if value - float(low[dim]) < w or float(high[dim]) - value < w:
+                continue
+            if best is None or empty > best[0]:
+                best = (empty, dim, value)
+    return None if best is None else (best[1], best[2])

@@ -244,6 +244,12 @@ class TreeConfig:
     for an action that collides from one part of it and passes from the other. Needs the
     model. Runs on :class:`agent.tree_ensemble.TreeEnsembleAgent`'s loop. An env that reports
     no collisions never triggers it. False: off."""
+    collision_splits_collided_only: bool = False
+    """With ``collision_splits`` (beyond the paper;
+    :func:`agent.collision_split.choose_collided_only_split`): where every stored epoch of
+    (leaf, a) collided, so that no cut separates collided from free epochs, the leaf is cut so
+    that its larger part holds none of those epochs' first inputs. False: such a leaf is not
+    cut (part 14)."""
     optimistic_untried: bool = False
     """Optimism for untried actions (beyond the paper): an action never tried in a leaf or in
     any leaf it was split from is valued at the largest return the rewards have paid inside
@@ -553,6 +559,16 @@ class TreeConfig:
             raise ValueError(
                 "TreeConfig.collision_splits = True needs planning = 'sweep' (it cuts between "
                 f"the model's stored epochs), got planning = {self.planning!r}"
+            )
+        only = self.collision_splits_collided_only
+        if not isinstance(only, bool):
+            raise ValueError(
+                f"TreeConfig.collision_splits_collided_only must be a bool, got {only!r}"
+            )
+        if only and not self.collision_splits:
+            raise ValueError(
+                "TreeConfig.collision_splits_collided_only = True needs collision_splits = True "
+                "(it cuts where the collision split finds no cut)"
             )
         if not isinstance(self.optimistic_untried, bool):
             raise ValueError(

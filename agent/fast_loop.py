@@ -170,6 +170,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "hold_after_truncation": bool,
     # needs the model, which turns the loop off (and it makes the agent a TreeEnsembleAgent)
     "collision_splits": bool,
+    "collision_splits_collided_only": bool,  # needs collision_splits, refused above
 }
 """Every ``TreeConfig`` field the fast loop knows, with the types or values it supports (the
 split fields run in Python, so any valid value). A field not listed here turns it off."""

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from agent.collision_split import choose_collision_split
+from agent.collision_split import choose_collided_only_split, choose_collision_split
 from agent.learner import SMDPAgent
 from agent.optimism import UntriedOptimism
 from agent.partition_tree import GatedPartitionTree, PartitionTree
@@ -94,19 +94,19 @@ class TreeAgent(SMDPAgent):
     def _collision_split(self, leaf: int, action: int) -> bool:
         """``TreeConfig.collision_splits``: cut ``leaf`` where the stored epochs of ``action``
         that ended on a collision and those that did not best separate
-        (:func:`agent.collision_split.choose_collision_split`); returns whether it split."""
+        (:func:`agent.collision_split.choose_collision_split`), or, with
+        ``collision_splits_collided_only``, where all of them collided, off their part of the
+        leaf (:func:`agent.collision_split.choose_collided_only_split`); returns whether it
+        split."""
         partition = self.partition
         if not partition.may_split():
             return False
         firsts, collided = self.model.collisions(leaf, action)  # type: ignore[union-attr]
         low, high, _, min_width = partition.split_box(leaf)
-        choice = choose_collision_split(
-            np.asarray(firsts, dtype=np.float64),
-            np.asarray(collided, dtype=np.bool_),
-            low,
-            high,
-            min_width,
-        )
+        args = (np.asarray(firsts, dtype=np.float64), np.asarray(collided, dtype=np.bool_))
+        choice = choose_collision_split(*args, low, high, min_width)
+        if choice is None and self.config.collision_splits_collided_only:
+            choice = choose_collided_only_split(*args, low, high, min_width)
         if choice is None:
             return False
         self._grow(leaf, partition.split_with_samples(leaf, *choice))

@@ -13,7 +13,7 @@ import pytest
 from gymnasium import spaces
 
 from agent import TreeConfig, general_as_of, preset
-from agent.collision_split import choose_collision_split
+from agent.collision_split import choose_collided_only_split, choose_collision_split
 from agent.exploration import make_exploration
 from agent.leaf_model import LeafModel
 from agent.tree_agent import TreeAgent
@@ -255,3 +255,71 @@ def test_no_stored_epochs_is_no_split() -> None:
         np.asarray([], dtype=np.float64), np.asarray([], dtype=np.bool_), *BOX
     )
     assert empty is None
+
+
+def _only(xs: list[list[float]], collided: list[bool], box: Any = BOX) -> tuple[int, float] | None:
+    firsts = np.array(xs, dtype=np.float64)
+    return choose_collided_only_split(firsts, np.array(collided, dtype=np.bool_), *box)
+
+
+def test_an_action_that_only_collided_is_cut_off_its_part_of_the_leaf() -> None:
+    # collided at 0.7 and 0.8 in [0, 1], smallest leaf 0.01: below, cut at 0.69 (0.68 empty);
+    # above, cut at 0.81 (0.19 empty): the wider empty part wins
+    assert _only([[0.7], [0.8]], [True, True]) == (0, pytest.approx(0.69))
+    assert _only([[0.2], [0.25]], [True, True]) == (0, pytest.approx(0.26))
+    # two dimensions: dimension 1's part below 0.9 (0.89 wide) beats dimension 0's (0.49)
+    box2 = (np.array([0.0, 0.0]), np.array([1.0, 1.0]), np.array([0.01, 0.01]))
+    assert _only([[0.5, 0.9], [0.5, 0.95]], [True, True], box2) == (1, pytest.approx(0.89))
+    # equal parts: the lower dimension, then the lower side
+    assert _only([[0.5, 0.5]], [True], box2) == (0, pytest.approx(0.49))
+
+
+def test_a_free_epoch_or_a_full_leaf_is_no_collided_only_cut() -> None:
+    assert _only([[0.7], [0.8]], [True, False]) is None  # the collision split's case
+    assert _only([], []) is None
+    # the collided inputs reach both edges less than two smallest leaves away: no child fits
+    wide = (np.array([0.0]), np.array([1.0]), np.array([0.3]))
+    assert _only([[0.35], [0.65]], [True, True], wide) is None
+    assert _only([[0.35], [0.65]], [True, True]) == (0, pytest.approx(0.34))
+
+
+class HighPost(Post):
+    """The post's env started right of the post only: action 0 collides from every start."""
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        super().reset(seed=seed)
+        self.x = float(self.np_random.uniform(0.6, 1.0))
+        return np.array([self.x]), {}
+
+
+def test_the_agent_cuts_off_the_part_where_an_action_only_collided() -> None:
+    alone = _train(POST, env=HighPost())
+    assert alone.n_leaves == 1  # no free epoch of action 0: the collision split finds no cut
+    only = dataclasses.replace(POST, collision_splits_collided_only=True)
+    agent = _train(only, env=HighPost())
+    assert agent.n_leaves >= 2
+    tree = agent.partition
+    assert tree._dim[0] == 0
+    # just below the lowest collided start at that time (every start is at least 0.6)
+    assert 0.6 - 1 / 256 <= tree._threshold[0] < 1.0
+    assert agent.model is not None
+    below = agent.partition.leaf_of([0.1])
+    assert agent.model.count(below, 0) == 0  # the part below holds no epoch of action 0
+    # an env that reports no collisions: the option changes nothing
+    quiet = _train(only, env=HighPost(report=False))
+    plain = _train(POST, env=HighPost(report=False))
+    assert quiet.q == plain.q
+
+
+@pytest.mark.parametrize("bad", [1, 0, "yes", None])
+def test_the_collided_only_cut_refuses_bad_values_by_name(bad: Any) -> None:
+    with pytest.raises(ValueError, match="collision_splits_collided_only must be a bool"):
+        dataclasses.replace(POST, collision_splits_collided_only=bad)
+
+
+def test_the_collided_only_cut_needs_collision_splits() -> None:
+    with pytest.raises(ValueError, match="collided_only = True needs collision_splits = True"):
+        dataclasses.replace(POST, collision_splits=False, collision_splits_collided_only=True)
+    assert preset("general").config.collision_splits_collided_only is False
