@@ -1,7 +1,9 @@
 """Part 33, d2's follow-up: the 500-step greedy episode of dev Acrobot seed 2 (the general
 preset, 1,000 episodes; reset seed 1,000,000 + 2,000): its leaf period up to 200 steps, the
 nearest earlier state to its last one, the tip's greatest height in each 50 steps (the goal is
-above 1.0) and its last 60 actions::
+above 1.0), its last 60 actions, and the ten leaves it visits most over its last 300 steps
+(visits, widths as fractions of the observation box, Q-bar per action, stored epochs per
+action)::
 
     python acrobot_stall.py
 """
@@ -34,3 +36,17 @@ h=-c1-(c1*c2-s1*s2)
 for k in range(0,500,50): print(k, round(float(h[k:k+50].max()),3), end="; ")
 print()
 print("distinct leaves last 300:", len(set(tail)), "actions last 60:", A[-60:])
+# the stall's leaves: widths relative to the root box, epochs stored, Q gaps
+import collections
+cnt = collections.Counter(L[-300:])
+space = env.observation_space
+rng_ = np.asarray(space.high, float) - np.asarray(space.low, float)
+rows=[]
+for leaf, n in cnt.most_common(10):
+    lo, hi = agent.partition.leaf_bounds(leaf)
+    w = (np.asarray(hi) - np.asarray(lo)) / rng_
+    q = agent.q[leaf]
+    ep = [len(agent.model._records.get(leaf * agent.n_actions + a, ())) for a in range(agent.n_actions)]
+    rows.append((leaf, n, np.round(w, 3).tolist(), [round(x, 2) for x in q], ep))
+for r in rows: print(r)
+print("leaves", agent.n_leaves)
