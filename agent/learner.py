@@ -24,7 +24,7 @@ from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments
 from agent.exploration import Exploration, make_exploration
 from agent.inspection import LeafInfo, render_partition
 from agent.leaf_model import LeafModel
-from agent.model_split import FloatArray, choose_model_split, choose_policy_split
+from agent.model_split import FloatArray, choose_model_split, choose_policy_split, spread_below
 from agent.novelty import NoveltyGrid
 from agent.optimism import UntriedOptimism
 from agent.partition import Partition
@@ -420,6 +420,9 @@ class SMDPAgent:
         if cfg.model_split_from_terminal and model.terminals == 0:
             return None
         firsts, targets = model.targets(leaf, action, self.q)
+        min_gap = self._in_units(cfg.model_split_gap)
+        if not cfg.policy_splits and spread_below(targets, min_gap):
+            return None  # choose_model_split's first test, before any array is built
         low, high, _, min_width = partition.split_box(leaf)
         choice = choose_model_split(
             np.asarray(firsts, dtype=np.float64),
@@ -427,7 +430,7 @@ class SMDPAgent:
             low,
             high,
             min_width,
-            min_gap=self._in_units(cfg.model_split_gap),
+            min_gap=min_gap,
             min_t=cfg.model_split_t,
         )
         if choice is None and cfg.policy_splits:

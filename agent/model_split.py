@@ -37,6 +37,14 @@ MIN_SIDE = 2
 """Fewest epochs on each side of a model split (a variance needs two)."""
 
 
+def spread_below(targets: list[float], min_gap: float) -> bool:
+    """Whether the targets' range is below ``min_gap``: :func:`choose_model_split`'s first test
+    (it then returns None), in plain Python, so that a caller skips building the arrays and the
+    leaf's box for the three tests in four that end there (issue 9, part 34:
+    ``bench/bench_model_split.py``)."""
+    return max(targets) - min(targets) < min_gap
+
+
 def choose_model_split(
     firsts: FloatArray,
     targets: FloatArray,

@@ -12,7 +12,7 @@ import pytest
 from gymnasium import spaces
 
 from agent import TreeAgent, TreeConfig, preset
-from agent.model_split import choose_model_split
+from agent.model_split import choose_model_split, spread_below
 from agent.tree_ensemble import tree_agent_class
 
 LINE = np.array([[0.1], [0.2], [0.3], [0.6], [0.7], [0.8]])
@@ -225,3 +225,44 @@ def test_from_the_first_terminal_waits_for_one() -> None:
 def test_the_model_split_switches_need_model_splits(field: str) -> None:
     with pytest.raises(ValueError, match=f"{field} = True needs model_split_epochs"):
         dataclasses.replace(LEDGE, model_split_epochs=None, **{field: True})
+
+
+def test_spread_below_is_the_first_test_of_the_model_split() -> None:
+    """``spread_below`` (issue 9, part 34) says True only where choose_model_split returns None,
+    and at the same boundary: a range equal to the gap is tested in full."""
+    rng = np.random.default_rng(34)
+    firsts = rng.uniform(0.0, 1.0, size=(12, 2))
+    box = (np.zeros(2), np.ones(2), np.full(2, 0.01))
+    for _ in range(200):
+        targets = rng.normal(0.0, 1.0, size=12)
+        gap = float(rng.uniform(0.0, 4.0))
+        if spread_below(targets.tolist(), gap):
+            assert choose_model_split(firsts, targets, *box, min_gap=gap, min_t=0.0) is None
+    targets = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
+    assert spread_below(targets.tolist(), 1.01)
+    assert not spread_below(targets.tolist(), 1.0)
+    assert choose_model_split(LINE, targets, *BOX, min_gap=1.0, min_t=3.0) is not None
+
+
+def test_the_agent_learns_the_same_without_the_shortcut(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The general preset's run is the same, Q-bar for Q-bar, with the shortcut of ``_model_split``
+    bypassed (every test built in full, as before part 34)."""
+    import agent.learner
+
+    def run() -> tuple[list[list[float]], int, list[int]]:
+        env = gym.make("CartPole-v1")
+        agent = preset("general").agent(env.observation_space, env.action_space, seed=3)
+        history = agent.learn(env, 40, reset_seed=3)
+        return agent.q, agent.n_leaves, [s.steps for s in history]
+
+    shortcut = run()
+    skipped = 0
+
+    def never(targets: list[float], min_gap: float) -> bool:
+        nonlocal skipped
+        skipped += spread_below(targets, min_gap)
+        return False
+
+    monkeypatch.setattr(agent.learner, "spread_below", never)
+    assert run() == shortcut
+    assert skipped > 10  # tests the shortcut would have ended were run in full here
