@@ -70,7 +70,7 @@ def choose_model_split(
     deviation wins; ties go to the lower dimension, then the lower value.
     """
     n, dims = firsts.shape
-    if n < 2 * MIN_SIDE or float(targets.max() - targets.min()) < min_gap:
+    if n < 2 * MIN_SIDE or spread_below(targets.tolist(), min_gap):
         return None
     best: tuple[float, int, float] | None = None
     for dim in range(dims):
