@@ -10,7 +10,7 @@ for m in "${MAZES[@]}"; do
   i=$((i + 1))
 done
 MC=(); for s in $(seq $((10 + W)) 2 49); do MC+=("$s"); done
-python override_runs.py MountainCar-v0 r3_mc.jsonl "${MC[@]}"
+python ../issue9_part34_dev/override_runs.py MountainCar-v0 r3_mc.jsonl "${MC[@]}"
 CP=(); for s in $(seq "$W" 2 9); do CP+=("$s"); done
-python override_runs.py CartPole-v1 r3_cp.jsonl "${CP[@]}"
+python ../issue9_part34_dev/override_runs.py CartPole-v1 r3_cp.jsonl "${CP[@]}"
 echo done
