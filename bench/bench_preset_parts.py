@@ -69,6 +69,9 @@ PARTS: dict[int, str] = {
     32: "greedy_tie_trial_avoid_collided: a trial episode keeps a set of the choices that "
     "collided without leaving their leaf; only runs past episode 300 on a maze change, so time "
     "it with --episodes 600",
+    36: "split_min_samples 50: the eqs. (12)-(13) split test runs on half as many new pairs, so "
+    "the tree grows sooner and larger; every run changes, and its cost is the larger tree's "
+    "(part 35 measured training CPU at 0.95-1.14x on its dev cases)",
 }
 """What part N changed in the preset, and where its cost was expected to come from."""
 

@@ -84,6 +84,7 @@ def test_general_preset_goes_beyond_the_paper_by_named_fields_only() -> None:
     assert general.greedy_tie_trial == 2.0
     assert (general.greedy_tie_trial_episodes, general.greedy_tie_trial_every) == (300, 4)
     assert general.greedy_tie_trial_margin == 2.0
+    assert general.split_min_samples == 50  # part 36 (Table I's N_th is 500; parts 1-35 used 100)
     assert type(preset("general").agent(BOX, spaces.Discrete(4))) is TreeEnsembleAgent
 
 
@@ -239,7 +240,9 @@ def test_the_from_terminal_candidate_changes_one_field_of_the_preset(kind: str) 
 
 def test_general_as_of_turns_back_each_later_part() -> None:
     now = preset("general").config
-    assert general_as_of(32) == now
+    assert general_as_of(36) == now
+    now = dataclasses.replace(now, split_min_samples=100)
+    assert general_as_of(35) == general_as_of(34) == general_as_of(33) == general_as_of(32) == now
     now = dataclasses.replace(now, greedy_tie_trial_avoid_collided=False)
     assert general_as_of(31) == general_as_of(30) == now
     now = dataclasses.replace(now, greedy_tie_trial=None, greedy_tie_trial_avoid_collided=False)
@@ -330,6 +333,8 @@ def test_greedy_choice_comparisons_set_the_preset_against_the_part_before(
         ("tie_trial_classic", 29, 30101),
         ("tie_trial_mazes", 29, 30102),
         ("trial_avoid_mazes", 31, 31108),
+        ("split_pairs_classic", 35, 36101),
+        ("split_pairs_mazes", 35, 36102),
     ],
 )
 def test_greedy_tie_comparisons_set_the_preset_against_the_part_before(

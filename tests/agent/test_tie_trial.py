@@ -401,5 +401,5 @@ def test_avoiding_collided_choices_leaves_a_classic_task_s_run_as_it_was() -> No
     assert runs[0] == runs[1]
     assert any(remade)  # the trial did remake choices, and none was held back
     assert general_as_of(31) == dataclasses.replace(
-        preset("general").config, greedy_tie_trial_avoid_collided=False
+        general_as_of(32), greedy_tie_trial_avoid_collided=False
     )
