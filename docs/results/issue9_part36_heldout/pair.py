@@ -15,10 +15,7 @@ Paper (36103, today's preset only) is read from its own report.md.
 
 from __future__ import annotations
 
-import csv
 import importlib.util
-import math
-from collections import defaultdict
 from pathlib import Path
 
 import numpy as np
@@ -43,7 +40,7 @@ CLASSIC = RESULTS / "issue9_part36_heldout_classic_seed36101"
 MAZES = RESULTS / "issue9_part36_heldout_mazes_seed36102"
 ARMS = ("general-part35", "general")
 LABELS = ("part 35", "part 36")
-_PART30.MAZES = MAZES  # its latest_convergence reads this folder
+_PART30.MAZES, _PART30.ARMS = MAZES, ARMS  # its mazes() reads these
 
 
 def classic(lines: list[str]) -> None:
@@ -75,50 +72,14 @@ def classic(lines: list[str]) -> None:
 
 
 def mazes(lines: list[str]) -> None:
+    """Part 30's maze table, read from this part's folder and arms."""
     if not (MAZES / "summary.csv").exists():
         lines.append("mazes 36102: not run")
         return
-    rows: dict[tuple[str, str], dict[str, str]] = {}
-    with (MAZES / "summary.csv").open() as f:
-        for row in csv.DictReader(f):
-            rows[(row["task"], row["strategy"])] = row
-    logs: dict[str, dict[str, list[float]]] = {arm: defaultdict(list) for arm in ARMS}
-    lines.append(
-        "layout: final / optimum, AUC / optimum, converged (median episode), greedy steps / "
-        f"optimum; {LABELS[0]} -> {LABELS[1]}"
-    )
-    for layout in sorted({task for task, _ in rows}):
-        cells = []
-        for arm in ARMS:
-            r = rows.get((layout, arm))
-            if r is None:
-                cells.append("not run")
-                continue
-            optimum = float(r["optimal_steps"])
-            final, auc = float(r["final_to_optimal_mean"]), float(r["auc_to_optimal_mean"])
-            greedy = float(r["greedy_steps_mean"]) / optimum
-            for key, value in (("final", final), ("auc", auc), ("greedy", greedy)):
-                logs[arm][key].append(math.log(value))
-            cells.append(
-                f"{final:.3f}, {auc:.3f}, {r['converged_runs']}/{r['runs']} "
-                f"({r['median_convergence_episode']}), {greedy:.3f}"
-            )
-        grids = [
-            float(r["auc_to_optimal_mean"])
-            for (task, arm), r in rows.items()
-            if task == layout and arm.startswith("grid-")
-        ]
-        best = f"; best grid's AUC {min(grids):.3f}" if grids else ""
-        lines.append(f"  {layout}: {cells[0]} -> {cells[1]}{best}")
-    latest = {arm: _PART30.latest_convergence(arm) for arm in ARMS}
-    lines.append(
-        "latest run convergence (episode; window 50, tolerance 0.1, the report's rule): "
-        + "; ".join(f"{arm} {latest[arm]}" for arm in ARMS)
-    )
-    for key in ("final", "auc", "greedy"):
-        geo = [math.exp(float(np.mean(logs[arm][key]))) for arm in ARMS if logs[arm][key]]
-        if len(geo) == 2:
-            lines.append(f"geometric mean {key}: {geo[0]:.3f} -> {geo[1]:.3f}")
+    table: list[str] = []
+    _PART30.mazes(table)
+    table[0] = table[0].replace("part 29 -> part 30", f"{LABELS[0]} -> {LABELS[1]}")
+    lines.extend(table)
 
 
 def main() -> None:
