@@ -18,8 +18,6 @@ from __future__ import annotations
 import importlib.util
 from pathlib import Path
 
-import numpy as np
-
 HERE = Path(__file__).resolve().parent
 RESULTS = HERE.parent
 
@@ -34,13 +32,18 @@ def _load(name: str, path: Path):  # type: ignore[no-untyped-def]
 
 
 _PART30 = _load("part30_pair", RESULTS / "issue9_part30_heldout_rows" / "pair.py")
-wilson, sign_p, TARGET = _PART30.wilson, _PART30.sign_p, _PART30.TARGET
+TARGET = _PART30.TARGET
 greedy_means = _PART30.greedy_means
 CLASSIC = RESULTS / "issue9_part36_heldout_classic_seed36101"
 MAZES = RESULTS / "issue9_part36_heldout_mazes_seed36102"
 ARMS = ("general-part35", "general")
 LABELS = ("part 35", "part 36")
 _PART30.MAZES, _PART30.ARMS = MAZES, ARMS  # its mazes() reads these
+
+
+def _relabel(text: str) -> str:
+    """Part 30's lines name its arms "part 29" and "part 30"; here they are parts 35 and 36."""
+    return text.replace("part 29", LABELS[0]).replace("part 30", LABELS[1])
 
 
 def classic(lines: list[str]) -> None:
@@ -55,18 +58,7 @@ def classic(lines: list[str]) -> None:
             lines.append(f"36101 {task}: {len(runs)} pairs finished")
             continue
         a, b = [old[r] for r in runs], [new[r] for r in runs]
-        target, n = TARGET[task], len(a)
-        diffs = np.asarray(b) - np.asarray(a)
-        boot = np.random.default_rng(0).choice(diffs, size=(10_000, n)).mean(axis=1)
-        low, high = np.percentile(boot, [2.5, 97.5])
-        higher, lower = int((diffs > 0).sum()), int((diffs < 0).sum())
-        hits = [sum(v >= target for v in arm) for arm in (a, b)]
-        lines.append(
-            f"36101 {task}: {LABELS[0]} {hits[0]} of {n} at {target:g}, mean {np.mean(a):.2f}; "
-            f"{LABELS[1]} {hits[1]} of {n}, mean {np.mean(b):.2f}; change {diffs.mean():+.2f} "
-            f"[{low:+.2f}, {high:+.2f}], higher {higher}, lower {lower}, sign test p = "
-            f"{sign_p(higher, lower):.2g}"
-        )
+        lines.append("36101 " + _relabel(_PART30._pairs(task, a, b)))
         lines.append(f"  {LABELS[0]}: " + ", ".join(f"{v:.2f}" for v in a))
         lines.append(f"  {LABELS[1]}: " + ", ".join(f"{v:.2f}" for v in b))
 
@@ -78,7 +70,7 @@ def mazes(lines: list[str]) -> None:
         return
     table: list[str] = []
     _PART30.mazes(table)
-    table[0] = table[0].replace("part 29 -> part 30", f"{LABELS[0]} -> {LABELS[1]}")
+    table[0] = _relabel(table[0])
     lines.extend(table)
 
 
