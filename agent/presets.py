@@ -104,14 +104,14 @@ GENERAL = Preset(
     "general",
     "one set of defaults for every task: measured units, a split test on 50 new pairs, a model "
     "over the leaves, sweeping, held exploration until 100 terminals, model-driven splits, "
-    "novel ends until 10 terminals "
-    "or 100 episodes, gamma 0.999, collision splits, a table for integer inputs, optimism for "
-    "untried actions, a presplit of at most the first 4 of more than 8 inputs, gamma 0.9995 once "
-    "every terminal is measured a failure, a greedy choice among actions with two stored epochs "
-    "(one in a table's cell), where the tree's ancestors, compared leaf by leaf, break the "
-    "actions' statistical ties, and from episode 300 one training episode in 4 that breaks "
-    "them at twice the width (never remaking, in an episode, a choice that collided without "
-    "leaving its leaf), which the greedy choice takes up where those episodes earn more",
+    "novel ends until 10 terminals or 100 episodes, gamma 0.999, collision splits, a table for "
+    "integer inputs, optimism for untried actions, a presplit of at most the first 4 of more "
+    "than 8 inputs, gamma 0.9995 once every terminal is measured a failure, a greedy choice "
+    "among actions with two stored epochs (one in a table's cell), where the tree's ancestors, "
+    "compared leaf by leaf, break the actions' statistical ties, and from episode 300 one "
+    "training episode in 4 that breaks them at twice the width (never remaking, in an episode, "
+    "a choice that collided without leaving its leaf), which the greedy choice takes up where "
+    "those episodes earn more",
     TreeConfig(
         threshold_units="scale",
         scale_rule="reward_median",
