@@ -626,6 +626,11 @@ def cmd_experiment(args: argparse.Namespace) -> int:
             )
     report = experiment.report()
     _print_experiment_summary(report)
+    if report.not_run:
+        print(
+            f"{len(report.not_run)} planned run(s) not run yet: the report covers the finished "
+            "ones; episodes.csv and evaluation.csv are written once every planned run is finished"
+        )
     return 0
 
 

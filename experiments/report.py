@@ -13,6 +13,7 @@ version (``--accept-code-change``) are listed as such.
 from __future__ import annotations
 
 import math
+from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -20,7 +21,7 @@ import numpy as np
 
 from experiments import plots, store
 from experiments.config import ExperimentConfig
-from experiments.runner import Task, inspect_folder, results_of
+from experiments.runner import FolderState, Task, inspect_folder, results_of
 from experiments.statistics import (
     StrategySummary,
     bootstrap_ci,
@@ -48,6 +49,8 @@ class Report:
     """Runs on disk left out (damaged, or computed from other inputs), with the reasons."""
     accepted: tuple[store.RunCheck, ...] = ()
     """Runs included although their code version differs (``accept_code_change``)."""
+    not_run: tuple[str, ...] = ()
+    """Planned runs that have not run yet (``--only``, or a cut experiment), by name."""
 
 
 def write_report(
@@ -62,6 +65,7 @@ def write_report(
     state = inspect_folder(config, out_dir, task, None, accept_code_change)
     excluded = tuple(check for _, check in state.excluded)
     accepted = tuple(check for _, check in state.code_changed) if accept_code_change else ()
+    not_run = tuple(spec.name for spec in state.not_run)
     results = {name: runs for name, runs in results_of(config, state).items() if runs}
     if not results:
         left_out = f"; left out: {listing(excluded)}" if excluded else ""
@@ -114,10 +118,10 @@ def write_report(
     text = (
         render_markdown(config, summaries, optimal, seed)
         + _evaluation_section(config, results)
-        + provenance(excluded, accepted)
+        + provenance(excluded, accepted, state)
     )
     store.atomic_write_text(markdown, text)
-    return Report(markdown, summary_csv, figures, summaries, optimal, excluded, accepted)
+    return Report(markdown, summary_csv, figures, summaries, optimal, excluded, accepted, not_run)
 
 
 def _evaluation_section(config: ExperimentConfig, results: dict[str, list[store.RunData]]) -> str:
@@ -151,9 +155,26 @@ def listing(checks: tuple[store.RunCheck, ...]) -> str:
     return "; ".join(f"{c.name} ({c.reason})" for c in checks)
 
 
-def provenance(excluded: tuple[store.RunCheck, ...], accepted: tuple[store.RunCheck, ...]) -> str:
-    """The report's section on runs left out and runs accepted under another code version."""
+def provenance(
+    excluded: tuple[store.RunCheck, ...],
+    accepted: tuple[store.RunCheck, ...],
+    state: FolderState | None = None,
+) -> str:
+    """The report's sections on planned runs not run yet (from ``state``), runs left out and
+    runs accepted under another code version."""
     lines: list[str] = []
+    if state is not None and state.not_run:
+        counts = Counter(spec.strategy.name for spec in state.not_run)
+        lines += [
+            "## Runs not run yet",
+            "",
+            f"{len(state.not_run)} of the {len(state.planned)} planned runs have not run "
+            f"({', '.join(f'`{name}` {n}' for name, n in counts.items())}), so this report covers "
+            f"{len(state.finished)} finished runs, and `episodes.csv` and `evaluation.csv`, which "
+            "merge every planned run, are not written. Running the experiment again (without "
+            "`--only`) computes the rest.",
+            "",
+        ]
     if accepted:
         lines += [
             "## Runs from another code version (accepted)",

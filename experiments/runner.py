@@ -72,6 +72,11 @@ class FolderState:
         return [spec for spec, _ in self._with("missing", "invalid")]
 
     @property
+    def not_run(self) -> list[RunSpec]:
+        """Planned runs with no files yet (``--only`` left them, or the experiment was cut)."""
+        return [spec for spec, _ in self._with("missing")]
+
+    @property
     def invalid(self) -> list[tuple[RunSpec, store.RunCheck]]:
         """Runs whose files did not verify (damaged, cut, edited): recomputed."""
         return self._with("invalid")
@@ -346,9 +351,13 @@ def write_episodes(
 ) -> Path | None:
     """Gather every run of ``config`` into ``episodes.csv`` (task order, strategy order, then
     run index; a ``task`` column first in an experiment over tasks), and the greedy episodes
-    into ``evaluation.csv``, once every run is finished and verified."""
+    into ``evaluation.csv``, once every run is finished and verified. Until then neither file
+    exists: one merged for an earlier plan (fewer runs or strategies) is removed, so a merged
+    file always holds exactly the runs the experiment asks for."""
     state = inspect_folder(config, out_dir, task, None, accept_code_change)
     if len(state.finished) != len(state.planned):
+        for name in (EPISODES_FILE, EVALUATION_FILE):
+            (out_dir / name).unlink(missing_ok=True)
         return None
     tasks = {t.name: i for i, t in enumerate(config.tasks)}
     order = {spec.name: i for i, spec in enumerate(config.strategies)}

@@ -67,6 +67,8 @@ class TaskReport:
     aggregates: tuple[AggregateRow, ...]
     excluded: tuple[store.RunCheck, ...] = ()
     accepted: tuple[store.RunCheck, ...] = ()
+    not_run: tuple[str, ...] = ()
+    """Planned runs that have not run yet (``--only``, or a cut experiment), by name."""
 
 
 def write_task_report(
@@ -103,9 +105,17 @@ def write_task_report(
     store.atomic_write_text(aggregate_csv, _aggregate_csv(rows))
     markdown = out_dir / REPORT_FILE
     text = render_markdown(config, summaries, rows, grouped, seed)
-    store.atomic_write_text(markdown, text + provenance(excluded, accepted))
+    store.atomic_write_text(markdown, text + provenance(excluded, accepted, state))
     return TaskReport(
-        markdown, summary_csv, aggregate_csv, tuple(figures), summaries, rows, excluded, accepted
+        markdown,
+        summary_csv,
+        aggregate_csv,
+        tuple(figures),
+        summaries,
+        rows,
+        excluded,
+        accepted,
+        tuple(spec.name for spec in state.not_run),
     )
 
 

@@ -51,3 +51,21 @@ def test_report_of_a_partial_experiment(small_config, standins, tmp_path: Path):
     assert len(report.excluded) == 2
     assert all("missing" in check.reason for check in report.excluded)
     assert "## Runs left out" in report.markdown.read_text()
+
+
+def test_report_names_the_planned_runs_not_run_yet(small_config, standins, tmp_path: Path):
+    runner.run_experiment(
+        small_config, tmp_path, SerialBackend(), standins.fake_run, only=["adaptive+tabu"]
+    )
+    report = write_report(small_config, tmp_path, task=standins.fake_run)
+    assert [s.strategy for s in report.summaries] == ["adaptive+tabu"]
+    assert len(report.not_run) == 3
+    assert all(name.startswith("eps__") for name in report.not_run)
+    assert report.excluded == ()
+    text = " ".join(report.markdown.read_text().split())
+    assert "## Runs not run yet 3 of the 6 planned runs have not run (`eps` 3)" in text
+    assert "covers 3 finished runs" in text
+    runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run)
+    report = write_report(small_config, tmp_path, task=standins.fake_run)
+    assert report.not_run == ()
+    assert "Runs not run yet" not in report.markdown.read_text()

@@ -93,6 +93,21 @@ def test_only_computes_a_subset_and_the_rest_completes_later(
     assert (out / "episodes.csv").read_bytes() == (tmp_path / "whole" / "episodes.csv").read_bytes()
 
 
+def test_a_merged_file_of_an_earlier_plan_is_removed_until_the_new_plan_is_finished(
+    small_config, standins, tmp_path: Path
+):
+    runner.run_experiment(small_config, tmp_path, SerialBackend(), standins.fake_run)
+    assert (tmp_path / "episodes.csv").exists()
+    more = with_overrides(small_config, runs=4)
+    added = runner.run_experiment(more, tmp_path, SerialBackend(), standins.fake_run, only=["eps"])
+    assert [r.run_index for r in added] == [3]
+    assert not (tmp_path / "episodes.csv").exists()  # its 3 runs a strategy are no longer the plan
+    runner.run_experiment(more, tmp_path, SerialBackend(), standins.fake_run)
+    with (tmp_path / "episodes.csv").open() as handle:
+        runs = {(r["strategy"], r["run"]) for r in csv.DictReader(handle)}
+    assert len(runs) == 2 * 4
+
+
 @pytest.mark.parametrize("only", [["nope"], []])
 def test_only_names_unknown_strategies(small_config, standins, tmp_path: Path, only):
     with pytest.raises(ConfigError, match=r"--only.*(nope|no strategy).*adaptive\+tabu"):

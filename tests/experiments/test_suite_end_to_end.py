@@ -170,7 +170,7 @@ def test_a_deleted_or_damaged_run_is_recomputed_alone(suite_run, tmp_path: Path)
     assert (out / "evaluation.csv").read_bytes() == (finished / "evaluation.csv").read_bytes()
 
 
-def test_only_then_the_rest_is_one_experiment(suite_run, tmp_path: Path):
+def test_only_then_the_rest_is_one_experiment(suite_run, tmp_path: Path, capsys):
     config, finished = suite_run
     out = tmp_path / "parts"
     assert _experiment(config, out, "--only", "grid-6") == 0
@@ -180,8 +180,16 @@ def test_only_then_the_rest_is_one_experiment(suite_run, tmp_path: Path):
     text = (out / "report.md").read_text()
     assert "| grid-6 | 2 | 4 |" in text
     assert "| eps |" not in text
+    planned = len(list((finished / "runs").rglob("*.json")))
+    assert "## Runs not run yet" in text
+    assert f"{planned // 2} of the {planned} planned runs have not run (`eps` {planned // 2})" in (
+        " ".join(text.split())
+    )
+    assert f"{planned // 2} planned run(s) not run yet" in capsys.readouterr().out
     assert _experiment(config, out) == 0
     assert (out / "episodes.csv").read_bytes() == (finished / "episodes.csv").read_bytes()
+    assert "## Runs not run yet" not in (out / "report.md").read_text()
+    assert "not run yet" not in capsys.readouterr().out
 
 
 def test_the_test_split_goes_to_its_own_folder(tmp_path: Path, monkeypatch, standins):
