@@ -1,6 +1,7 @@
-"""Part 37's held-out rows: a fifth fresh classic set (37101) with both arms of part 36's
-comparison file (today's preset, N_th 50, against ``general_as_of(35)``, N_th 100), and today's
-preset pooled over its three classic sets (36101, 36104, 37101).
+"""Part 37's held-out rows: a fifth fresh classic set (37101) and a second maze set (37102)
+with both arms of part 36's comparison files (today's preset, N_th 50, against
+``general_as_of(35)``, N_th 100), and today's preset pooled over its three classic sets (36101,
+36104, 37101). The maze table is part 36's (part 30's), read from 37102's folder.
 
 Per task: each arm's runs at the target and mean greedy return (20 greedy episodes a run), the
 paired change with a bootstrap 95 % interval and a sign test (part 30's formatter, as part 36's
@@ -33,6 +34,7 @@ _SPEC.loader.exec_module(_PART36)
 _PART30 = _PART36._PART30  # part 30's formatter and targets, as part 36 loaded them
 TARGET = _PART30.TARGET
 CLASSIC = RESULTS / "issue9_part37_heldout_classic_seed37101"
+MAZES = RESULTS / "issue9_part37_heldout_mazes_seed37102"
 SETS = {
     36101: RESULTS / "issue9_part36_heldout_classic_seed36101",
     36104: RESULTS / "issue9_part36_heldout_classic_seed36104",
@@ -72,6 +74,11 @@ def main() -> None:
     lines += [line.replace("36101", "37101", 1) for line in part36]
     lines.append("")
     pooled(lines)
+    lines.append("")
+    _PART36.MAZES = _PART30.MAZES = MAZES  # their mazes() read these
+    part36 = []
+    _PART36.mazes(part36)
+    lines += [line.replace("36102", "37102") for line in part36]
     (HERE / "pair.txt").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
