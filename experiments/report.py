@@ -118,7 +118,7 @@ def write_report(
     text = (
         render_markdown(config, summaries, optimal, seed)
         + _evaluation_section(config, results)
-        + provenance(excluded, accepted, state)
+        + provenance(state)
     )
     store.atomic_write_text(markdown, text)
     return Report(markdown, summary_csv, figures, summaries, optimal, excluded, accepted, not_run)
@@ -155,15 +155,13 @@ def listing(checks: tuple[store.RunCheck, ...]) -> str:
     return "; ".join(f"{c.name} ({c.reason})" for c in checks)
 
 
-def provenance(
-    excluded: tuple[store.RunCheck, ...],
-    accepted: tuple[store.RunCheck, ...],
-    state: FolderState | None = None,
-) -> str:
-    """The report's sections on planned runs not run yet (from ``state``), runs left out and
-    runs accepted under another code version."""
+def provenance(state: FolderState) -> str:
+    """The report's sections on planned runs not run yet, runs left out and runs accepted
+    under another code version (``--accept-code-change``), all read from the folder's state."""
+    excluded = [check for _, check in state.excluded]
+    accepted = [check for _, check in state.code_changed] if state.accept_code_change else []
     lines: list[str] = []
-    if state is not None and state.not_run:
+    if state.not_run:
         counts = Counter(spec.strategy.name for spec in state.not_run)
         lines += [
             "## Runs not run yet",

@@ -105,7 +105,7 @@ def write_task_report(
     store.atomic_write_text(aggregate_csv, _aggregate_csv(rows))
     markdown = out_dir / REPORT_FILE
     text = render_markdown(config, summaries, rows, grouped, seed)
-    store.atomic_write_text(markdown, text + provenance(excluded, accepted, state))
+    store.atomic_write_text(markdown, text + provenance(state))
     return TaskReport(
         markdown,
         summary_csv,
