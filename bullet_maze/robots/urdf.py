@@ -28,8 +28,8 @@ MAX_LINKS = 256
 FRAME_MASS = 0.01
 """kg given to a link without inertial data (a frame, a sensor mount) when others have some."""
 
-JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic", "floating", "planar")
-"""URDF joint types."""
+JOINT_TYPES = ("fixed", "continuous", "revolute", "prismatic", "floating", "planar", "spherical")
+"""URDF joint types, and pybullet's ``spherical`` extension (pybullet_data's humanoid uses it)."""
 
 
 @dataclass(frozen=True)
@@ -75,8 +75,11 @@ def read_urdf(path: Path) -> UrdfModel:
         raise ValueError(
             f"robot URDF {path} is {size:,} bytes; at most {MAX_URDF_BYTES:,} are read"
         )
+    # pybullet's own parser ignores NUL bytes after the document; some of its shipped URDFs
+    # (pybullet_data's humanoid/humanoid.urdf) end with one, so they are read here too.
+    data = path.read_bytes().rstrip(b"\x00 \t\r\n")
     try:
-        root = ET.fromstring(path.read_bytes())
+        root = ET.fromstring(data)
     except ET.ParseError as err:
         raise ValueError(f"robot URDF {path} is not well-formed XML: {err}") from None
     if root.tag != "robot":

@@ -14,6 +14,7 @@ import pytest
 from bullet_maze import BulletMazeEnv, load_robot_spec
 from bullet_maze.robots import MAX_LINKS, resolve_robot
 from bullet_maze.robots.drives import DEFAULT_BRAKING
+from bullet_maze.robots.urdf import read_urdf
 
 DATA = Path(pybullet_data.getDataPath())
 
@@ -330,6 +331,22 @@ def test_hostile_urdfs_are_refused_before_pybullet_loads_them(
     with pytest.raises(ValueError, match=message) as caught:
         BulletMazeEnv(robot=str(path))
     assert "hostile.urdf" in str(caught.value)
+
+
+def test_what_pybullet_accepts_is_read(write: Callable[[str, str], Path]) -> None:
+    # pybullet ignores NUL bytes after the document (pybullet_data's humanoid.urdf ends with
+    # one) and loads its own ``spherical`` joint type; both reach the env as they reach pybullet.
+    humanoid = read_urdf(DATA / "humanoid" / "humanoid.urdf")
+    assert humanoid.joint("chest") is not None
+    assert humanoid.joint("chest").type == "spherical"  # type: ignore[union-attr]
+    path = write("padded.urdf", cart_urdf() + "\x00\x00\n")
+    env = BulletMazeEnv(maze="open", robot=str(path), mode="dynamic")
+    try:
+        assert env.robot.drive.kind == "differential"
+        env.reset(seed=0)
+        env.step(0)
+    finally:
+        env.close()
 
 
 def test_an_oversized_urdf_is_not_read(tmp_path: Path) -> None:
