@@ -8,7 +8,8 @@ is read here first, within bounds, and rewritten only where that helps:
 
 * links without ``<inertial>`` get a near-zero mass (``FRAME_MASS``) when some other link has
   inertial data (a URDF without any keeps pybullet's defaults: it would otherwise weigh nothing);
-* relative mesh paths become absolute, so that the rewritten text loads from anywhere.
+* mesh references become the absolute paths pybullet would find from the original file
+  (``mesh_file``), so that the rewritten text loads from anywhere.
 """
 
 from __future__ import annotations
@@ -75,9 +76,10 @@ def read_urdf(path: Path) -> UrdfModel:
         raise ValueError(
             f"robot URDF {path} is {size:,} bytes; at most {MAX_URDF_BYTES:,} are read"
         )
-    # pybullet's own parser ignores NUL bytes after the document; some of its shipped URDFs
-    # (pybullet_data's humanoid/humanoid.urdf) end with one, so they are read here too.
-    data = path.read_bytes().rstrip(b"\x00 \t\r\n")
+    # pybullet's own parser ignores blank lines before the XML declaration and NUL bytes after
+    # the document; some of its shipped URDFs have them (pybullet_data's biped2d_pybullet.urdf,
+    # humanoid.urdf), so they are read here too.
+    data = path.read_bytes().lstrip(b" \t\r\n").rstrip(b"\x00 \t\r\n")
     try:
         root = ET.fromstring(data)
     except ET.ParseError as err:
@@ -192,8 +194,34 @@ def _rewritten(root: ET.Element, path: Path) -> str | None:
                 )
                 changed = True
     for mesh in root.iter("mesh"):
-        filename = mesh.get("filename", "")
-        if filename and "://" not in filename and not Path(filename).is_absolute():
-            mesh.set("filename", str(path.parent / filename))
+        found = mesh_file(mesh.get("filename", ""), path)
+        if found is not None:
+            mesh.set("filename", found)
             changed = True
     return ET.tostring(root, encoding="unicode") if changed else None
+
+
+def mesh_file(filename: str, urdf: Path) -> str | None:
+    """The absolute path of the mesh ``filename`` named in the URDF at ``urdf``, found by
+    pybullet's own rule, when a copy of the URDF elsewhere would not find it; None otherwise.
+
+    pybullet drops a leading ``package://`` or ``model://``, tries the name as it stands (from
+    the working directory), then beside the URDF and in each folder above it (bullet3's
+    ``UrdfFindMeshFile``). A copy loaded from a temporary folder would search above that folder
+    instead, so such a mesh (pybullet_data's ``xarm`` meshes under ``package://``, the
+    ``racecar_differential`` meshes two folders up) is named by its absolute path. A mesh found
+    nowhere is left for pybullet to report."""
+    for prefix in ("package://", "model://"):
+        if filename.startswith(prefix):
+            filename = filename[len(prefix) :]
+            break
+    else:
+        if "://" in filename:
+            return None
+    if not filename or Path(filename).is_absolute() or Path(filename).is_file():
+        return None
+    folder = urdf.resolve().parent
+    for place in (folder, *folder.parents):
+        if (place / filename).is_file():
+            return str(place / filename)
+    return None

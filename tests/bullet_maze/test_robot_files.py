@@ -14,7 +14,7 @@ import pytest
 from bullet_maze import BulletMazeEnv, load_robot_spec
 from bullet_maze.robots import MAX_LINKS, resolve_robot
 from bullet_maze.robots.drives import DEFAULT_BRAKING
-from bullet_maze.robots.urdf import read_urdf
+from bullet_maze.robots.urdf import mesh_file, read_urdf
 
 DATA = Path(pybullet_data.getDataPath())
 
@@ -347,6 +347,37 @@ def test_what_pybullet_accepts_is_read(write: Callable[[str, str], Path]) -> Non
         env.step(0)
     finally:
         env.close()
+
+
+@pytest.mark.parametrize(
+    "urdf",
+    [
+        "xarm/xarm6_robot.urdf",  # package:// meshes, and links without inertia (rewritten)
+        "racecar/racecar_differential.urdf",  # meshes named from two folders up
+        "biped/biped2d_pybullet.urdf",  # blank lines before the XML declaration
+    ],
+)
+def test_pybullet_data_urdfs_that_pybullet_loads_load_here(urdf: str) -> None:
+    env = BulletMazeEnv(maze="open", robot=str(DATA / urdf))
+    try:
+        env.reset(seed=0)
+        env.step(0)
+    finally:
+        env.close()
+
+
+def test_a_rewritten_urdf_finds_its_meshes_where_pybullet_would(tmp_path: Path) -> None:
+    mesh = tmp_path / "shared" / "block.obj"
+    mesh.parent.mkdir()
+    mesh.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    urdf = tmp_path / "robots" / "arm" / "arm.urdf"
+    urdf.parent.mkdir(parents=True)
+    assert mesh_file("shared/block.obj", urdf) == str(mesh)  # two folders up
+    assert mesh_file("package://shared/block.obj", urdf) == str(mesh)
+    assert mesh_file("model://shared/block.obj", urdf) == str(mesh)
+    assert mesh_file(str(mesh), urdf) is None  # already absolute
+    assert mesh_file("shared/missing.obj", urdf) is None  # left for pybullet to report
+    assert mesh_file("http://example.org/block.obj", urdf) is None
 
 
 def test_an_oversized_urdf_is_not_read(tmp_path: Path) -> None:
