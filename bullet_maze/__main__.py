@@ -2,6 +2,7 @@
 
     python -m bullet_maze generate "rooms:seed=3,door=30" --out my.toml
     python -m bullet_maze import-map map.json --cell-size 50 --out my.toml
+    python -m bullet_maze import-map map.json --start-cell 1,1 --goal-cell 5,7 --out my.toml
     python -m bullet_maze import-map --standard umaze --out umaze.toml
     python -m bullet_maze show my.toml
 
@@ -69,10 +70,29 @@ def _parser() -> argparse.ArgumentParser:
         help=f"side of a map cell in maze units (default {DEFAULT_CELL_SIZE:g})",
     )
     imported.add_argument("--name", help="the layout's name (default: the map's)")
+    for end in ("start", "goal"):
+        imported.add_argument(
+            f"--{end}-cell",
+            type=_cell,
+            metavar="ROW,COLUMN",
+            help=f"the {end} cell (row 0 at the top), where the map marks none",
+        )
     _output(imported)
     show = sub.add_parser("show", help="print a layout's size and physical limit")
     show.add_argument("maze", metavar="MAZE", help="a layout name, file or generator spec")
     return parser
+
+
+def _cell(text: str) -> tuple[int, int]:
+    """A ``--start-cell`` or ``--goal-cell`` value: two integers, ``ROW,COLUMN``."""
+    parts = text.split(",")
+    try:
+        row, column = (int(part) for part in parts)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected ROW,COLUMN (two integers, e.g. 3,4), got {text!r}"
+        ) from None
+    return row, column
 
 
 def _output(parser: argparse.ArgumentParser) -> None:
@@ -81,6 +101,7 @@ def _output(parser: argparse.ArgumentParser) -> None:
 
 
 def _import(args: argparse.Namespace) -> MazeLayout:
+    cells = {"start_cell": args.start_cell, "goal_cell": args.goal_cell}
     if args.standard:
         name = args.name or f"pointmaze/{args.standard}"
         return layout_from_maze_map(
@@ -89,6 +110,7 @@ def _import(args: argparse.Namespace) -> MazeLayout:
             name=name,
             description=f"PointMaze's {args.standard} map (Gymnasium-Robotics), D4RL's goal cell",
             source=f"--standard {args.standard}",
+            **cells,
         )
     path: Path = args.map
     if not path.is_file():
@@ -100,7 +122,7 @@ def _import(args: argparse.Namespace) -> MazeLayout:
     except (UnicodeDecodeError, json.JSONDecodeError, RecursionError) as err:
         raise ValueError(f"{path}: not a JSON maze map: {err}") from None
     return layout_from_maze_map(
-        maze_map, args.cell_size, name=args.name or path.stem, source=str(path)
+        maze_map, args.cell_size, name=args.name or path.stem, source=str(path), **cells
     )
 
 
@@ -135,7 +157,12 @@ def _summary(layout: MazeLayout) -> str:
 
 def _quoted(args: argparse.Namespace) -> str:
     source = f"--standard {args.standard}" if args.standard else str(args.map)
-    return f"import-map {source} --cell-size {args.cell_size:g}"
+    cells = "".join(
+        f" --{end}-cell {cell[0]},{cell[1]}"
+        for end, cell in (("start", args.start_cell), ("goal", args.goal_cell))
+        if cell is not None
+    )
+    return f"import-map {source} --cell-size {args.cell_size:g}{cells}"
 
 
 if __name__ == "__main__":

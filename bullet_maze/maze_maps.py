@@ -124,7 +124,8 @@ def layout_from_maze_map(
     goal = _pick(grid, goal_cell, (_G,), (_C,), "goal", source)
     if goal is None:
         raise ValueError(
-            f"{source}: the map has no 'g' (or single 'c') cell: give goal_cell=(row, column)"
+            f"{source}: the map has no 'g' (or single 'c') cell: give goal_cell=(row, column) "
+            "(--goal-cell ROW,COLUMN on the command line)"
         )
     start = _pick(grid, start_cell, (_R,), (_C,), "start", source, exclude=goal)
     if start is None:
@@ -132,7 +133,7 @@ def layout_from_maze_map(
         if start == goal:
             raise ValueError(
                 f"{source}: no free cell connects to the goal cell {goal}: give "
-                "start_cell=(row, column)"
+                "start_cell=(row, column) (--start-cell ROW,COLUMN on the command line)"
             )
     walls = [
         Wall(

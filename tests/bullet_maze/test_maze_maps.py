@@ -74,6 +74,33 @@ def test_import_map_command_writes_a_loadable_file(tmp_path: Path) -> None:
     assert np.allclose(layout.goal, (150.0, 30.0))
 
 
+def test_import_map_command_takes_the_start_and_goal_cells(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    source = tmp_path / "plain.json"
+    source.write_text(json.dumps([[1, 1, 1, 1], [1, 0, 0, 1], [1, 0, 0, 1], [1, 1, 1, 1]]))
+    out = tmp_path / "plain.toml"
+    with pytest.raises(SystemExit) as stop:  # no goal marked: the message names the option
+        layout_cli(["import-map", str(source), "--out", str(out)])
+    assert stop.value.code == 2
+    assert "--goal-cell ROW,COLUMN" in capsys.readouterr().err
+    cells = ["--goal-cell", "1,1", "--start-cell", "2,2"]
+    assert layout_cli(["import-map", str(source), *cells, "--out", str(out)]) == 0
+    layout = load_layout(out)
+    assert (layout.start, layout.goal) == ((75.0, 25.0), (25.0, 75.0))
+    assert "--start-cell 2,2 --goal-cell 1,1" in out.read_text().splitlines()[0]
+    for bad in ("1", "1,x", "1,2,3", ""):
+        with pytest.raises(SystemExit) as stop:
+            layout_cli(["import-map", str(source), f"--goal-cell={bad}", "--out", str(out)])
+        assert stop.value.code == 2
+        assert f"expected ROW,COLUMN (two integers, e.g. 3,4), got {bad!r}" in (
+            capsys.readouterr().err
+        )
+    with pytest.raises(SystemExit):
+        layout_cli(["import-map", str(source), "--goal-cell=-2,1", "--out", str(out)])
+    assert "goal_cell (-2, 1) is outside the map" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize(
     ("maze_map", "kwargs", "match"),
     [
