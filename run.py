@@ -730,6 +730,11 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
             f"{optimal:g}"
         )
     print(f"steps, capped episodes counted at the cap: mean {steps.mean():.1f}")
+    if result.tipped:
+        print(
+            f"the robot tipped over (info['tipped']) in {result.tipped} of "
+            f"{len(result.episodes)} episodes and lay there until the cap"
+        )
     print(
         f"collisions per episode: {np.mean([e.collisions for e in result.episodes]):.1f}; "
         f"{steps.sum() / max(measured.wall_time_s, 1e-9):,.0f} steps/s"

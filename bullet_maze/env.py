@@ -22,7 +22,7 @@ from gymnasium import spaces
 
 from bullet_maze.action_sets import ActionParams, CompassActions, make_action_set
 from bullet_maze.geometry import clearance
-from bullet_maze.goals import goal_reward, goal_space
+from bullet_maze.goals import collision_flags, goal_reward, goal_space
 from bullet_maze.layout import DEFAULT_LAYOUT, MazeLayout, load_layout
 from bullet_maze.params import MODES, PhysicsParams, TaskParams
 from bullet_maze.perturbations import NAMES as PERTURBATION_NAMES
@@ -231,8 +231,11 @@ class BulletMazeEnv(gym.Env[Any, Any]):
 
     `reset(seed=..., options={"start": (x, y) or (x, y, heading), "goal": (x, y)})` moves the
     start and the goal for that episode (validated). `info` has `collision`,
-    `distance_to_goal` and `is_success`. `env.unwrapped.optimal_steps` is the least number of
-    compass steps that can reach the goal (see `bullet_maze.shortest_path`).
+    `distance_to_goal` and `is_success`, and in dynamic mode `tipped`: the robot's up axis is
+    more than `tip_angle` (60 degrees) from the vertical, so it lies on its side and will not
+    move again; with `end_on_tip=True` that step truncates the episode (default: it goes on).
+    `env.unwrapped.optimal_steps` is the least number of compass steps that can reach the goal
+    (see `bullet_maze.shortest_path`).
 
     ## Perturbations
 
@@ -433,6 +436,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._goal = self.layout.goal
         self._goal_radius = self.layout.goal_radius
         self._body_in_sync = True
+        self._tipped = False
         self._limits: dict[tuple[tuple[float, float], tuple[float, float]], PhysicalLimit] = {}
 
     def _connect(self, render_mode: str | None) -> int:
@@ -531,13 +535,17 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             "distance_to_goal": distance,
             "is_success": success,
         }
+        cut = False
+        if not self._kinematic:
+            info["tipped"] = tipped = self._tipped
+            cut = tipped and self.physics.end_on_tip
         if self._perturbed:
             info["perturbation"] = dict(self._perturbation)
         if not self._plain:
-            return self._observation(), reward, success, False, info
+            return self._observation(), reward, success, cut, info
         if self._has_heading:
-            return np.array((x, y, self._heading)), reward, success, False, info
-        return np.array((x, y)), reward, success, False, info
+            return np.array((x, y, self._heading)), reward, success, cut, info
+        return np.array((x, y)), reward, success, cut, info
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -561,6 +569,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._x, self._y = start
         self._heading = wrap_angle(heading) if self.robot.has_heading else heading
         self._body_in_sync = True
+        self._tipped = False
         if (start, goal) != (self._start, self._goal):
             self.world.move_markers(start, goal)
         self._start, self._goal = start, goal
@@ -570,6 +579,8 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             "distance_to_goal": distance,
             "is_success": False,
         }
+        if not self._kinematic:
+            info["tipped"] = False
         if self._perturbed:
             info["perturbation"] = dict(self._perturbation)
         return self._observation(), info
@@ -640,9 +651,13 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         return bool(done) if done.ndim == 0 else done
 
     def _compute_truncated(self, achieved_goal: Any, desired_goal: Any, info: Any) -> Any:
-        """Never: the time limit is the registration's ``max_episode_steps``."""
+        """Whether the step's robot had tipped over (``info["tipped"]`` with ``end_on_tip``;
+        the time limit is the registration's ``max_episode_steps``), whatever the goals."""
         shape = np.shape(np.asarray(achieved_goal))[:-1]
-        return False if shape == () else np.zeros(shape, dtype=bool)
+        if not self.physics.end_on_tip:
+            return False if shape == () else np.zeros(shape, dtype=bool)
+        cut = collision_flags(info, shape, key="tipped")
+        return bool(cut) if shape == () else cut
 
     # -- The physical limit ----------------------------------------------------------------
 
@@ -770,6 +785,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
             x, y, self._heading = robot.pose()
         else:
             x, y = robot.position()
+        self._tipped = robot.tilt() > self.physics.tip_angle
         # Physics may push a body a hair past the arena's edge; the observation stays in its box.
         width, height = self._arena
         self._x = x if 0.0 <= x <= width else 0.0 if x < 0.0 else width

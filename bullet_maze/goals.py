@@ -44,20 +44,18 @@ def goal_distance(achieved_goal: Any, desired_goal: Any) -> np.ndarray:
     return np.linalg.norm(achieved - desired, axis=-1)
 
 
-def collision_flags(info: Any, shape: tuple[int, ...]) -> np.ndarray:
-    """The ``collision`` entries of one ``info`` dict or a batch of them, as booleans of
-    ``shape`` (False where an info does not say)."""
+def collision_flags(info: Any, shape: tuple[int, ...], key: str = "collision") -> np.ndarray:
+    """The ``key`` entries (``collision``, or ``tipped``) of one ``info`` dict or a batch of
+    them, as booleans of ``shape`` (False where an info does not say)."""
     if info is None:
         return np.zeros(shape, dtype=bool)
     if isinstance(info, Mapping):
-        flag = info.get("collision", False)
+        flag = info.get(key, False)
         if isinstance(flag, np.ndarray):  # a vector env's info: one entry per env
             return np.broadcast_to(flag.astype(bool), shape)
         return np.full(shape, bool(flag))
     infos = np.asarray(info, dtype=object).reshape(-1)
-    flags = np.array(
-        [bool(i.get("collision", False)) if isinstance(i, Mapping) else False for i in infos]
-    )
+    flags = np.array([bool(i.get(key, False)) if isinstance(i, Mapping) else False for i in infos])
     if flags.size != int(np.prod(shape)):
         raise ValueError(f"{flags.size} infos for {int(np.prod(shape))} goals")
     return flags.reshape(shape)

@@ -151,6 +151,18 @@ class PhysicsParams:
     husky's 40 Hz compass physics a quarter turn takes about 35)."""
     max_drive_substeps: int = 240
     """Upper bound on the physics steps a wheeled robot may spend driving one step."""
+    tip_angle: float = math.pi / 3.0
+    """Radians between the robot's up axis and the vertical past which a dynamic robot has
+    tipped over (60 degrees; ``place`` stands every robot upright, 0). A tipped robot lies on
+    its side and no command moves it again (pybullet_data's tall ``r2d2.urdf`` falls on its
+    third compass step), so ``info["tipped"]`` reports it at every dynamic step. pi: never."""
+    end_on_tip: bool = False
+    """A step that leaves the robot tipped ends the episode as truncated (a cut, not a terminal
+    state, so that ending there is no escape from the step rewards for an agent that
+    bootstraps as at a time limit); it saves the physics of a robot that will not move again.
+    False (default): the episode goes on, the robot lying where it fell, until the time limit,
+    so a fall counts as a failure of the full length in every step count. The experiment
+    harness counts a failed episode's steps at the cap and refuses True."""
     contact_release: bool = True
     """The kinematic sweep (``World.sweep_collides``, both modes' exact moves): a robot within
     the contact tolerance of a solid may still move away from it or along it; only a move
@@ -181,3 +193,11 @@ class PhysicsParams:
             raise TypeError(f"revert_on_collision must be a bool, got {self.revert_on_collision!r}")
         if not isinstance(self.contact_release, bool):
             raise TypeError(f"contact_release must be a bool, got {self.contact_release!r}")
+        if not isinstance(self.end_on_tip, bool):
+            raise TypeError(f"end_on_tip must be a bool, got {self.end_on_tip!r}")
+        if not (
+            isinstance(self.tip_angle, int | float)
+            and not isinstance(self.tip_angle, bool)
+            and 0.0 < self.tip_angle <= math.pi
+        ):
+            raise ValueError(f"tip_angle must be in (0, pi] radians, got {self.tip_angle!r}")

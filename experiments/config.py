@@ -1047,6 +1047,14 @@ class _Reader:
                     f"{env_id} takes no such argument (it takes "
                     f"{', '.join(sorted(accepted - reserved))})",
                 )
+            if key == "end_on_tip" and value is True and _is_maze_id(env_id):
+                raise self.fail(
+                    where,
+                    key,
+                    "would cut an episode short where the robot tips over, and the reports "
+                    "count a failed episode's steps at the cap; leave it false (info['tipped'] "
+                    "still reports a fall, and evaluations count them)",
+                )
             if isinstance(hints.get(key), _Checked):
                 try:
                     hints[key].check(key, value)

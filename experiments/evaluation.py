@@ -19,6 +19,8 @@ class Episode:
     collisions: int
     positions: np.ndarray
     """Robot (x, y) at every step, the reset position first: (steps + 1) x 2."""
+    tipped: bool = False
+    """The robot had tipped over by the end (a dynamic maze env's ``info["tipped"]``)."""
 
 
 @dataclass(frozen=True)
@@ -36,6 +38,11 @@ class Evaluation:
     def steps(self) -> np.ndarray:
         """Steps of each episode (a capped episode counts its cap)."""
         return np.array([e.steps for e in self.episodes])
+
+    @property
+    def tipped(self) -> int:
+        """Episodes that ended with the robot tipped over."""
+        return sum(e.tipped for e in self.episodes)
 
     @property
     def successful_steps(self) -> np.ndarray:
@@ -63,7 +70,8 @@ def greedy_episode(
     # cut by the time limit only: an episode that ends on its last allowed step is not
     # "truncated" (the learner's episode statistics count it the same way)
     cut = bool(truncated) and not terminated
-    return Episode(steps, total, success, cut, collisions, np.array(positions))
+    tipped = bool(info.get("tipped", False))
+    return Episode(steps, total, success, cut, collisions, np.array(positions), tipped)
 
 
 def evaluate(env: Any, agent: Any, episodes: int, seed: int = 0) -> Evaluation:

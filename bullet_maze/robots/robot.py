@@ -129,6 +129,13 @@ class Robot:
         s = METRES_PER_UNIT
         return position[0] / s, position[1] / s, wrap_angle(yaw(orientation) + self.drive.forward)
 
+    def tilt(self) -> float:
+        """Radians between the base's up axis and the vertical: 0 upright, as ``place`` stands
+        the robot, pi upside down."""
+        _, (qx, qy, _, _) = pb.getBasePositionAndOrientation(self.body_id, self.client)
+        up = 1.0 - 2.0 * (qx * qx + qy * qy)  # the z component of the base's rotated z axis
+        return math.acos(up if -1.0 <= up <= 1.0 else math.copysign(1.0, up))
+
     def joint_states(self) -> tuple[float, ...]:
         """Positions of the movable joints (radians or metres, in joint order)."""
         if not self._joints:
