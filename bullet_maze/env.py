@@ -437,6 +437,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._goal_radius = self.layout.goal_radius
         self._body_in_sync = True
         self._tipped = False
+        self._tip_cosine = math.cos(self.physics.tip_angle)
         self._limits: dict[tuple[tuple[float, float], tuple[float, float]], PhysicalLimit] = {}
 
     def _connect(self, render_mode: str | None) -> int:
@@ -781,11 +782,10 @@ class BulletMazeEnv(gym.Env[Any, Any]):
                 return True
         else:
             touched = robot.execute(command, world)
+        x, y, heading, up = robot.placement(self._has_heading)
         if self._has_heading:
-            x, y, self._heading = robot.pose()
-        else:
-            x, y = robot.position()
-        self._tipped = robot.tilt() > self.physics.tip_angle
+            self._heading = heading
+        self._tipped = up < self._tip_cosine  # tilted past tip_angle
         # Physics may push a body a hair past the arena's edge; the observation stays in its box.
         width, height = self._arena
         self._x = x if 0.0 <= x <= width else 0.0 if x < 0.0 else width

@@ -132,9 +132,24 @@ class Robot:
     def tilt(self) -> float:
         """Radians between the base's up axis and the vertical: 0 upright, as ``place`` stands
         the robot, pi upside down."""
-        _, (qx, qy, _, _) = pb.getBasePositionAndOrientation(self.body_id, self.client)
-        up = 1.0 - 2.0 * (qx * qx + qy * qy)  # the z component of the base's rotated z axis
+        up = self.placement(False)[3]
         return math.acos(up if -1.0 <= up <= 1.0 else math.copysign(1.0, up))
+
+    def placement(self, heading: bool) -> tuple[float, float, float, float]:
+        """(x, y, heading, up) from one pybullet call: ``pose`` (the heading 0.0 unless asked
+        for) and the cosine of ``tilt``, the z component of the base's rotated z axis."""
+        position, orientation = pb.getBasePositionAndOrientation(self.body_id, self.client)
+        s = METRES_PER_UNIT
+        qx, qy = orientation[0], orientation[1]
+        up = 1.0 - 2.0 * (qx * qx + qy * qy)
+        if not heading:
+            return position[0] / s, position[1] / s, 0.0, up
+        return (
+            position[0] / s,
+            position[1] / s,
+            wrap_angle(yaw(orientation) + self.drive.forward),
+            up,
+        )
 
     def joint_states(self) -> tuple[float, ...]:
         """Positions of the movable joints (radians or metres, in joint order)."""
