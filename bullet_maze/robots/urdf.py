@@ -218,10 +218,18 @@ def mesh_file(filename: str, urdf: Path) -> str | None:
     else:
         if "://" in filename:
             return None
-    if not filename or Path(filename).is_absolute() or Path(filename).is_file():
+    if not filename or Path(filename).is_absolute() or _is_file(Path(filename)):
         return None
     folder = urdf.resolve().parent
     for place in (folder, *folder.parents):
-        if (place / filename).is_file():
+        if _is_file(place / filename):
             return str(place / filename)
     return None
+
+
+def _is_file(path: Path) -> bool:
+    """``path.is_file()``, False where the name itself is unusable (too long, say)."""
+    try:
+        return path.is_file()
+    except (OSError, ValueError):
+        return False

@@ -378,6 +378,22 @@ def test_a_rewritten_urdf_finds_its_meshes_where_pybullet_would(tmp_path: Path) 
     assert mesh_file(str(mesh), urdf) is None  # already absolute
     assert mesh_file("shared/missing.obj", urdf) is None  # left for pybullet to report
     assert mesh_file("http://example.org/block.obj", urdf) is None
+    assert mesh_file("a" * 5000 + ".obj", urdf) is None  # a name too long for the system
+    assert mesh_file("package://" + "b/" * 3000 + "c.obj", urdf) is None
+
+
+def test_a_mesh_name_too_long_for_the_system_is_pybullets_to_refuse(
+    write: Callable[[str, str], Path],
+) -> None:
+    mesh = f'<visual><geometry><mesh filename="{"a" * 5000}.obj"/></geometry></visual>'
+    extra = (  # a frame link without inertia makes the file be rewritten, meshes and all
+        f'<link name="frame">{mesh}</link>'
+        '<joint name="frame_joint" type="fixed"><parent link="base"/><child link="frame"/>'
+        "</joint>"
+    )
+    path = write("long.urdf", cart_urdf(extra=extra))
+    with pytest.raises(ValueError, match=r"long\.urdf could not be loaded by pybullet"):
+        BulletMazeEnv(maze="open", robot=str(path))
 
 
 def test_an_oversized_urdf_is_not_read(tmp_path: Path) -> None:
