@@ -511,6 +511,7 @@ def write_cell(out: Path, result: CellResult, inputs: Mapping[str, Any]) -> None
         "wall_time_s": result.wall_time_s,
         "env_steps": result.env_steps,
         "projected": result.projected,
+        "tipped": result.tipped,
         "data_sha256": hashlib.sha256(data).hexdigest(),
         "data_bytes": len(data),
         "inputs": dict(inputs),
@@ -574,6 +575,9 @@ def _read_cell(
     optimal = meta.get("optimal_steps")
     if isinstance(optimal, bool) or not isinstance(optimal, int | float):
         raise ValueError(f"{meta_path}: optimal_steps is {optimal!r}")
+    tipped = meta.get("tipped", 0)  # absent in cells stored before falls were counted
+    if isinstance(tipped, bool) or not isinstance(tipped, int) or not 0 <= tipped <= episodes:
+        raise ValueError(f"{meta_path}: tipped is {tipped!r} of {episodes} episodes")
     if not csv_path.is_file():
         raise ValueError(f"{csv_path}: missing (its sidecar exists)")
     size = csv_path.stat().st_size

@@ -89,6 +89,8 @@ class CellResult:
     env_steps: int
     projected: bool
     inputs: dict[str, Any] = field(default_factory=dict)
+    tipped: int = 0
+    """Episodes whose robot had tipped over by their end (``info["tipped"]``)."""
 
 
 def cell_seed(run_seed: int, condition: Condition, layout: str) -> int:
@@ -151,4 +153,5 @@ def evaluate_cell(cell: Cell) -> CellResult:
         int(sum(e.steps for e in result.episodes)),
         projected,
         inputs,
+        result.tipped,
     )

@@ -45,6 +45,7 @@ CELL_COLUMNS = (
     "optimal_steps",
     "steps_ratio",
     "collisions",
+    "tipped",
     "train_success_rate",
     "gap",
 )
@@ -66,6 +67,9 @@ class CellRow:
     optimal_steps: float
     steps_ratio: float
     collisions: float
+    tipped: float
+    """Fraction of the episodes whose robot had tipped over by their end (NaN for a cell stored
+    before falls were counted)."""
     train_success_rate: float
     gap: float
     """Success rate here minus in the agent's training condition (NaN without it)."""
@@ -115,11 +119,13 @@ def cell_rows(state: TransferState) -> list[CellRow]:
                 optimal,
                 steps_ratio(steps, optimal),
                 float(np.mean(check.columns["collisions"])),
+                # a cell stored before falls were counted does not say: NaN
+                int(check.meta["tipped"]) / len(steps) if "tipped" in check.meta else math.nan,
             )
         )
     own = {c.agent.key: s for c, s, *_ in raw if c.condition.level == TRAIN_LEVEL}
     rows = []
-    for cell, success, mean_steps, optimal, ratio, collisions in raw:
+    for cell, success, mean_steps, optimal, ratio, collisions, tipped in raw:
         reference = own.get(cell.agent.key, math.nan)
         rows.append(
             CellRow(
@@ -135,6 +141,7 @@ def cell_rows(state: TransferState) -> list[CellRow]:
                 optimal,
                 ratio,
                 collisions,
+                tipped,
                 reference,
                 success - reference,
             )
@@ -232,7 +239,7 @@ def write_transfer_report(
         skipped.setdefault((item.agent.group, item.condition.name), item.reason)
     skipped_rows = tuple((group, name, reason) for (group, name), reason in skipped.items())
     path = out / "report.md"
-    text = _markdown(spec, agents, state, summary, figures, skipped_rows)
+    text = _markdown(spec, agents, state, summary, figures, skipped_rows, rows)
     store.atomic_write_text(path, text)
     return TransferReport(path, tuple(rows), tuple(summary), figures, skipped_rows)
 
@@ -328,6 +335,7 @@ def _markdown(
     summary: Sequence[SummaryRow],
     figures: Sequence[Path],
     skipped: Sequence[tuple[str, str, str]],
+    rows: Sequence[CellRow] = (),
 ) -> str:
     grid = spec.conditions
     cap = (
@@ -356,6 +364,21 @@ def _markdown(
             f"| {s.group} | {s.layout} | {s.robot} | {s.mode} | {s.level} | {s.agents} | "
             f"{_ci(s.success, True)} | {_ci(s.ratio, False)} | {_gap(s.gap)} |"
         )
+    fell = [r for r in rows if r.tipped > 0]
+    if fell:
+        lines += [
+            "",
+            "## Robots that tipped over",
+            "",
+            'A tipped robot lies on its side until the episode\'s cap (`info["tipped"]`): '
+            "each such episode is a failure counted at the cap.",
+            "",
+        ]
+        lines += [
+            f"- {r.agent}: {r.robot} / {r.mode} / {r.level} in {r.layout}: "
+            f"{round(r.tipped * r.episodes)} of {r.episodes} episodes"
+            for r in fell
+        ]
     if skipped:
         lines += ["", "## Conditions that do not apply", ""]
         seen = set()

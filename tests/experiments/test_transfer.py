@@ -10,11 +10,13 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pybullet_data
 import pytest
 
 import run
 from experiments import config as config_module
-from experiments import runner, store
+from experiments import fingerprint, runner, store
+from experiments import transfer as transfer_module
 from experiments.backends import ProcessBackend, SerialBackend
 from experiments.config import ConfigError, parse_config
 from experiments.transfer import Transfer, parse_spec
@@ -373,3 +375,49 @@ def test_agents_may_be_named_by_a_pattern(trained: Path, tmp_path: Path):
     )
     with pytest.raises(ConfigError, match="matches no file"):
         Transfer(_spec([str(trained / "runs" / "nothing*")]), tmp_path / "v")
+
+
+def test_a_robot_that_tips_over_is_counted_at_the_cap_and_named(trained: Path, tmp_path: Path):
+    urdf = Path(pybullet_data.getDataPath()) / "r2d2.urdf"
+    robot = tmp_path / "r2d2.toml"
+    robot.write_text(
+        f'urdf = "{urdf}"\ndrive = "differential"\n[wheels]\n'
+        'left = ["left_front_wheel_joint", "left_back_wheel_joint"]\n'
+        'right = ["right_front_wheel_joint", "right_back_wheel_joint"]\n'
+    )
+    data = copy.deepcopy(SPEC)
+    data["transfer"].update(agents=[str(trained)], max_episode_steps=12)
+    data["conditions"] = {"robots": [str(robot)], "modes": ["dynamic"], "levels": ["none"]}
+    out = tmp_path / "transfer"
+    job = Transfer(parse_spec(data, "tip_transfer.toml"), out)
+    job.run()
+    report = job.report()
+    fell = [r for r in report.cells if r.robot == "r2d2"]
+    assert fell
+    assert all(r.tipped == 1.0 for r in fell)  # the r2d2 falls within 12 steps
+    assert all(r.mean_steps == 12.0 and r.success_rate == 0.0 for r in fell)
+    assert all(r.tipped == 0.0 for r in report.cells if r.robot == "disc")
+    text = report.path.read_text()
+    assert "## Robots that tipped over" in text
+    assert "r2d2 / dynamic / none in open: 2 of 2 episodes" in text
+    header = (out / "cells.csv").read_text().splitlines()[0].split(",")
+    assert "tipped" in header
+
+
+@pytest.mark.parametrize("tipped", [-1, 3, True, 1.5, "1"])
+def test_a_sidecar_with_an_impossible_fall_count_is_invalid(
+    trained: Path, tmp_path: Path, tipped: Any
+):
+    out = tmp_path / "transfer"
+    job = Transfer(_spec([str(trained)]), out)
+    job.run()
+    cell = job.cells[0]
+    _, sidecar = transfer_module.cell_paths(out, cell.name)
+    meta = json.loads(sidecar.read_text())
+    meta.pop("sidecar_sha256")
+    meta["tipped"] = tipped  # re-hashed, so only the count itself is wrong
+    meta["sidecar_sha256"] = fingerprint.digest(meta)
+    sidecar.write_text(json.dumps(meta))
+    check = transfer_module.check_cell(out, cell, {})
+    assert check.status == "invalid"
+    assert f"tipped is {tipped!r} of 2 episodes" in str(check.reason)
