@@ -437,6 +437,7 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         self._goal_radius = self.layout.goal_radius
         self._body_in_sync = True
         self._tipped = False
+        self._tipped_before = False  # warned once per env
         self._tip_cosine = math.cos(self.physics.tip_angle)
         self._limits: dict[tuple[tuple[float, float], tuple[float, float]], PhysicalLimit] = {}
 
@@ -785,12 +786,33 @@ class BulletMazeEnv(gym.Env[Any, Any]):
         x, y, heading, up = robot.placement(self._has_heading)
         if self._has_heading:
             self._heading = heading
-        self._tipped = up < self._tip_cosine  # tilted past tip_angle
+        tipped = up < self._tip_cosine  # tilted past tip_angle
+        if tipped and not self._tipped_before:
+            self._tipped_before = True
+            self._warn_tipped(up)
+        self._tipped = tipped
         # Physics may push a body a hair past the arena's edge; the observation stays in its box.
         width, height = self._arena
         self._x = x if 0.0 <= x <= width else 0.0 if x < 0.0 else width
         self._y = y if 0.0 <= y <= height else 0.0 if y < 0.0 else height
         return touched
+
+    def _warn_tipped(self, up: float) -> None:
+        """Say once per env that the robot fell, and what a robot file can change."""
+        drive = self.robot.drive
+        hint = (
+            f"; its wheels turn at up to {drive.limits.wheel_speed:g} rad/s, which a robot file "
+            "can lower ([limits] max_wheel_speed)"
+            if drive.kind != "holonomic"
+            else ""
+        )
+        logger.warning(
+            "robot %s tipped over in dynamic mode (tilted %.0f degrees): it lies on its side "
+            "until the episode ends, info['tipped'] reports it%s (docs/simulation.md)",
+            self.robot.name,
+            math.degrees(math.acos(max(-1.0, min(1.0, up)))),
+            hint,
+        )
 
     # -- Perturbations (bullet_maze.perturbations) ---------------------------------------
 

@@ -29,7 +29,9 @@ class North:
         return int(Action.UP)
 
 
-def test_a_robot_that_tips_over_is_reported_and_the_episode_goes_on() -> None:
+def test_a_robot_that_tips_over_is_reported_and_the_episode_goes_on(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
     env = BulletMazeEnv(maze="open", robot=R2D2, mode="dynamic")
     try:
         _, info = env.reset(seed=0)
@@ -45,8 +47,14 @@ def test_a_robot_that_tips_over_is_reported_and_the_episode_goes_on() -> None:
         _, info = env.reset(seed=0)  # reset stands it up again
         assert info["tipped"] is False
         assert env.robot.tilt() < 0.05
+        for _ in range(4):  # it falls again, and the warning is not repeated
+            env.step(Action.UP)
     finally:
         env.close()
+    warnings = [r.getMessage() for r in caplog.records if "tipped over" in r.getMessage()]
+    assert len(warnings) == 1
+    assert "robot r2d2 tipped over in dynamic mode" in warnings[0]
+    assert "[limits] max_wheel_speed" in warnings[0]
 
 
 def test_end_on_tip_truncates_the_step_that_tips_and_a_wide_angle_never_does() -> None:
