@@ -814,6 +814,8 @@ def cmd_render(args: argparse.Namespace) -> int:
     playback = _playback(args)
     out, episode = playback.render(args.out, args.seed, args.fps, args.max_frames)
     outcome = "reached the goal" if episode.success else "did not reach the goal"
+    if episode.tipped:
+        outcome += ", the robot having tipped over"
     env = playback.env_spec
     print(f"{out}: {episode.steps} steps, {outcome} ({env.robot}, {env.mode})")
     return 0

@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+import pybullet_data
 import pytest
 
 import run
@@ -226,6 +227,18 @@ def test_render_writes_a_gif(trained, tmp_path: Path):
         == 0
     )
     assert gif.read_bytes()[:6] == b"GIF89a"
+
+
+def test_evaluate_and_render_say_when_the_robot_tipped(trained, tmp_path: Path, capsys):
+    out, _ = trained
+    r2d2 = str(Path(pybullet_data.getDataPath()) / "r2d2.urdf")
+    common = ["--robot", r2d2, "--mode", "dynamic", "--max-episode-steps", "12"]
+    assert run.main(["evaluate", str(out), *common, "--episodes", "2"]) == 0
+    text = capsys.readouterr().out
+    assert "the robot tipped over (info['tipped']) in 2 of 2 episodes" in text
+    gif = tmp_path / "fall.gif"
+    assert run.main(["render", str(out), *common, "--out", str(gif), "--max-frames", "3"]) == 0
+    assert "did not reach the goal, the robot having tipped over" in capsys.readouterr().out
 
 
 def test_experiment_with_one_and_two_workers(tmp_path: Path, capsys, standins):
