@@ -154,6 +154,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     "model_split_from_terminal": bool,
     "policy_splits": bool,
     "novelty_cells": (int, type(None)),
+    "novelty_max_cells": (int, type(None)),  # matters only with novelty_cells (the model)
     "novelty_terminals": int,
     "novelty_episodes": (int, type(None)),
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off

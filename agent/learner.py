@@ -178,9 +178,11 @@ class SMDPAgent:
         if self.model is not None:
             self.model.novel_value = q0
         self.novelty = (
-            NoveltyGrid(low, high, cfg.novelty_cells) if cfg.novelty_cells is not None else None
+            NoveltyGrid(low, high, cfg.novelty_cells, cfg.novelty_max_cells)
+            if cfg.novelty_cells is not None
+            else None
         )
-        """The grid of ``TreeConfig.novelty_cells`` (None: off)."""
+        """The grid of ``TreeConfig.novelty_cells`` and ``novelty_max_cells`` (None: off)."""
         self.q: list[list[float]] = [[q0] * self.n_actions for _ in range(self.partition.n_ids)]
         self.visits: list[list[int]] = [[0] * self.n_actions for _ in range(self.partition.n_ids)]
         self.episodes_done = 0

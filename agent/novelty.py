@@ -17,7 +17,9 @@ epochs the agent has found what ends an episode, and every novel end is pointed 
 once that many episodes have ended, for a task whose episodes never terminate.
 
 Dimensions without finite bounds (a ``Box`` grown from the data) are left out of the cells:
-their range is not known when the count begins.
+their range is not known when the count begins. ``TreeConfig.novelty_max_cells`` bounds the
+cells in all (:func:`cells_per_dimension`): on many inputs a fixed count per dimension makes a
+grid so large that nearly every end is novel.
 """
 
 from __future__ import annotations
@@ -28,20 +30,42 @@ from collections.abc import Sequence
 Cell = tuple[int, ...]
 
 
-class NoveltyGrid:
-    """The cell of an input on a grid of ``cells`` equal parts of each bounded dimension."""
+def cells_per_dimension(cells: int, dims: int, max_cells: int | None) -> int:
+    """The cells along each of ``dims`` bounded dimensions: ``cells``, or fewer where
+    ``max_cells`` bounds the grid (the largest c with c^dims <= max_cells), and at least 2."""
+    if max_cells is None or dims == 0:
+        return cells
+    c = min(cells, max(2, math.floor(max_cells ** (1.0 / dims))))
+    while c > 2 and c**dims > max_cells:  # the float root may overshoot by one
+        c -= 1
+    while c < cells and (c + 1) ** dims <= max_cells:  # ... or fall short by one
+        c += 1
+    return c
 
-    def __init__(self, low: Sequence[float], high: Sequence[float], cells: int) -> None:
+
+class NoveltyGrid:
+    """The cell of an input on a grid of ``cells`` equal parts of each bounded dimension (fewer
+    where ``max_cells`` bounds the grid's cells in all: :func:`cells_per_dimension`)."""
+
+    def __init__(
+        self,
+        low: Sequence[float],
+        high: Sequence[float],
+        cells: int,
+        max_cells: int | None = None,
+    ) -> None:
         if len(low) != len(high):
             raise ValueError(f"low has {len(low)} dimensions and high {len(high)}")
         if isinstance(cells, bool) or not isinstance(cells, int) or cells < 2:
             raise ValueError(f"novelty grid cells must be an int >= 2, got {cells!r}")
-        self.cells = cells
-        self.dims = [
-            (d, float(lo), cells / (float(hi) - float(lo)))
+        bounded = [
+            (d, float(lo), float(hi))
             for d, (lo, hi) in enumerate(zip(low, high, strict=True))
             if math.isfinite(lo) and math.isfinite(hi) and hi > lo
         ]
+        cells = cells_per_dimension(cells, len(bounded), max_cells)
+        self.cells = cells
+        self.dims = [(d, lo, cells / (hi - lo)) for d, lo, hi in bounded]
         """(dimension, low, cells per unit) of each dimension the grid covers."""
 
     def cell(self, x: Sequence[float]) -> Cell:

@@ -15,7 +15,7 @@ import pytest
 
 from agent import TreeAgent, TreeConfig, preset
 from agent.leaf_model import LeafModel
-from agent.novelty import NoveltyGrid
+from agent.novelty import NoveltyGrid, cells_per_dimension
 from agent.tree_ensemble import tree_agent_class
 
 SWEEP = TreeConfig(planning="sweep", split_min_samples=10**6)
@@ -34,6 +34,28 @@ def test_the_cell_of_an_input_by_hand() -> None:
 def test_unbounded_dimensions_are_left_out() -> None:
     grid = NoveltyGrid([0.0, -math.inf, 0.0], [1.0, math.inf, 2.0], 4)
     assert grid.cell([0.3, 1e9, 1.9]) == (1, 3)
+
+
+@pytest.mark.parametrize(
+    ("dims", "cells"),
+    [(0, 64), (1, 64), (2, 64), (3, 16), (4, 8), (5, 5), (6, 4), (7, 3), (8, 2), (16, 2)],
+)
+def test_a_bound_on_all_cells_sets_the_cells_per_dimension(dims: int, cells: int) -> None:
+    # the largest c <= 64 with c^dims <= 4,096, at least 2 (5^5 = 3,125 and 6^5 = 7,776)
+    assert cells_per_dimension(64, dims, 4096) == cells
+    assert cells_per_dimension(64, dims, None) == 64
+    grid = NoveltyGrid([0.0] * dims, [1.0] * dims, 64, 4096)
+    assert grid.cells == cells
+    assert len(grid.dims) == dims
+
+
+def test_the_bound_counts_only_bounded_dimensions() -> None:
+    # two bounded inputs and four unbounded (CartPole-like): the grid is the unbounded 64 x 64
+    grid = NoveltyGrid([0.0, -math.inf, 0.0, -math.inf], [1.0, math.inf, 1.0, math.inf], 64, 4096)
+    assert grid.cells == 64
+    assert grid.cell([0.99, 5.0, 0.0, -5.0]) == (63, 0)
+    six = NoveltyGrid([0.0] * 6, [8.0] * 6, 64, 4096)  # 4 cells of 2.0 along each input
+    assert six.cell([0.0, 1.9, 2.0, 3.9, 4.0, 8.0]) == (0, 0, 1, 1, 2, 3)
 
 
 @pytest.mark.parametrize("cells", [1, 0, True, 2.5, "8"])
@@ -243,6 +265,10 @@ def test_damaged_counts_are_refused(entries: Any) -> None:
         ({"novelty_episodes": 2.0}, "novelty_episodes"),
         ({"novelty_episodes": "100"}, "novelty_episodes"),
         ({"novelty_cells": 8, "planning": "none"}, "needs planning"),
+        ({"novelty_cells": 8, "novelty_max_cells": 1}, "novelty_max_cells"),
+        ({"novelty_cells": 8, "novelty_max_cells": True}, "novelty_max_cells"),
+        ({"novelty_cells": 8, "novelty_max_cells": 4096.0}, "novelty_max_cells"),
+        ({"novelty_cells": 8, "novelty_max_cells": 2**41}, "novelty_max_cells"),
     ],
 )
 def test_bad_values_are_refused_by_name(fields: dict[str, Any], match: str) -> None:
