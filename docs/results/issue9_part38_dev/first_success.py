@@ -17,23 +17,28 @@ import warnings
 
 import gymnasium as gym
 
-from agent import adapt_env, preset
+from agent import EpisodeStats, adapt_env, preset
 from agent.tree_ensemble import tree_agent_class
 
 OVERRIDES = json.loads(os.environ.get("OVERRIDES", "{}"))
 
 
+def train(task: str, seed: int, episodes: int) -> list[EpisodeStats]:
+    """Today's general preset with ``OVERRIDES``, trained from reset seed = agent seed."""
+    general = preset("general")
+    config = dataclasses.replace(general.config, **OVERRIDES)
+    env = adapt_env(gym.make(task))
+    agent = tree_agent_class(config)(
+        env.observation_space, env.action_space, general.make_exploration(), seed, config
+    )
+    return agent.learn(env, episodes, reset_seed=seed)
+
+
 def main(argv: list[str]) -> None:
     warnings.simplefilter("ignore")
     task, episodes = argv[1], int(argv[2])
-    general = preset("general")
-    config = dataclasses.replace(general.config, **OVERRIDES)
     for seed in map(int, argv[3:]):
-        env = adapt_env(gym.make(task))
-        agent = tree_agent_class(config)(
-            env.observation_space, env.action_space, general.make_exploration(), seed, config
-        )
-        history = agent.learn(env, episodes, reset_seed=seed)
+        history = train(task, seed, episodes)
         blocks = [
             round(sum(s.steps for s in history[i : i + 25]) / 25) for i in range(0, episodes, 25)
         ]

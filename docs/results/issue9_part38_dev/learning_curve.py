@@ -8,32 +8,19 @@ reached the goal and the mean steps per episode over the run, its first 300 and 
 
 from __future__ import annotations
 
-import dataclasses
 import json
-import os
 import sys
 import warnings
 from pathlib import Path
 
-import gymnasium as gym
-
-from agent import adapt_env, preset
-from agent.tree_ensemble import tree_agent_class
-
-OVERRIDES = json.loads(os.environ.get("OVERRIDES", "{}"))
+from first_success import OVERRIDES, train  # this folder's script, on sys.path when run
 
 
 def main(argv: list[str]) -> None:
     warnings.simplefilter("ignore")
     task, out = argv[1], Path(argv[2])
-    general = preset("general")
-    config = dataclasses.replace(general.config, **OVERRIDES)
     for seed in map(int, argv[3:]):
-        env = adapt_env(gym.make(task))
-        agent = tree_agent_class(config)(
-            env.observation_space, env.action_space, general.make_exploration(), seed, config
-        )
-        history = agent.learn(env, 1000, reset_seed=seed)
+        history = train(task, seed, 1000)
         row = {
             "task": task,
             "seed": seed,
