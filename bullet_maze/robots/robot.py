@@ -120,14 +120,13 @@ class Robot:
 
     def position(self) -> tuple[float, float]:
         """(x, y) of the robot's base in maze units."""
-        (x, y, _), _ = pb.getBasePositionAndOrientation(self.body_id, self.client)
-        return x / METRES_PER_UNIT, y / METRES_PER_UNIT
+        x, y, _, _ = self.placement(False)
+        return x, y
 
     def pose(self) -> tuple[float, float, float]:
         """(x, y, heading) of the robot's base in maze units and radians."""
-        position, orientation = pb.getBasePositionAndOrientation(self.body_id, self.client)
-        s = METRES_PER_UNIT
-        return position[0] / s, position[1] / s, wrap_angle(yaw(orientation) + self.drive.forward)
+        x, y, heading, _ = self.placement(True)
+        return x, y, heading
 
     def tilt(self) -> float:
         """Radians between the base's up axis and the vertical: 0 upright, as ``place`` stands
