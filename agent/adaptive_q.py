@@ -40,6 +40,7 @@ import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
+from agent.env_checks import CheckedEnv, observation_vector
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
 from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
@@ -235,7 +236,8 @@ class AdaptiveQAgent:
     ) -> list[EpisodeStats]:
         """Train for ``episodes`` episodes (as :meth:`agent.SMDPAgent.learn`)."""
         check_learn_arguments(env, episodes, self.n_actions)
-        return run_episodes(env, episodes, self._run_episode, callback, reset_seed)
+        checked = CheckedEnv(env, len(self.bounds[0]))
+        return run_episodes(checked, episodes, self._run_episode, callback, reset_seed)
 
     def update(self, x: list[float], action: int, reward: float, next_value: float) -> None:
         """One step of Algorithm 1 on the box of (x, action); ``next_value`` is V(x') (0 at a
@@ -291,6 +293,7 @@ class AdaptiveQAgent:
     def predict(self, obs: Any, deterministic: bool = True) -> int:
         """The action of the largest optimistic Q (lowest index among ties unless
         ``deterministic=False``, which breaks ties at random)."""
+        observation_vector(obs, len(self.bounds[0]), "predict")
         values, _ = self._values(self._input(obs))
         if deterministic:
             return greedy_among(values)

@@ -20,6 +20,7 @@ from gymnasium import spaces
 
 from agent.ancestor_ties import PairedSums, ancestors_choice
 from agent.config import TreeConfig
+from agent.env_checks import CheckedEnv, observation_vector
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments
 from agent.exploration import Exploration, make_exploration
 from agent.inspection import LeafInfo, render_partition
@@ -212,6 +213,8 @@ class SMDPAgent:
         run_episode: Callable[[Any, Any], EpisodeStats] = self._run_episode
         if fast and episodes > 0 and _fast_runner is not None:
             run_episode = _fast_runner(self, env)
+        if run_episode == self._run_episode:  # a user's env: check what it hands the agent
+            env = CheckedEnv(env, len(self.bounds[0]))
         # the fast loop writes its state into the agent only when asked (before a callback
         # can look, and at the end)
         sync: Callable[[], None] | None = getattr(run_episode, "sync", None)
@@ -648,7 +651,7 @@ class SMDPAgent:
         """The greedy action for ``obs`` (lowest index among ties); with ``deterministic=False``
         the exploration strategy chooses (drawing from the agent's generator).
         """
-        x = np.asarray(obs, dtype=np.float64).reshape(-1).tolist()
+        x = observation_vector(obs, len(self.bounds[0]), "predict")
         leaf = self.partition.leaf_of(x)
         row = self.q[leaf]
         if deterministic:
@@ -868,7 +871,7 @@ class SMDPAgent:
 
     def leaf_of(self, obs: Any) -> int:
         """Id of the leaf that holds ``obs``."""
-        return self.partition.leaf_of(np.asarray(obs, dtype=np.float64).reshape(-1).tolist())
+        return self.partition.leaf_of(observation_vector(obs, len(self.bounds[0]), "leaf_of"))
 
     @property
     def n_leaves(self) -> int:

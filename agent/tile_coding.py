@@ -34,6 +34,7 @@ import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
+from agent.env_checks import CheckedEnv, observation_vector
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
 from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
@@ -201,7 +202,8 @@ class TileCodingAgent:
     ) -> list[EpisodeStats]:
         """Train for ``episodes`` episodes (as :meth:`agent.SMDPAgent.learn`)."""
         check_learn_arguments(env, episodes, self.n_actions)
-        return run_episodes(env, episodes, self._run_episode, callback, reset_seed)
+        checked = CheckedEnv(env, len(self.bounds[0]))
+        return run_episodes(checked, episodes, self._run_episode, callback, reset_seed)
 
     def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:
         step_size = self.alpha / self.tilings
@@ -256,7 +258,7 @@ class TileCodingAgent:
 
     def q_values(self, obs: Any) -> list[float]:
         """Q(obs, a) for every action (tiles never seen count 0; nothing is numbered)."""
-        x = np.asarray(obs, dtype=np.float64).reshape(-1).tolist()
+        x = observation_vector(obs, len(self.bounds[0]), "predict")
         features = self.coder.features(x, allocate=False)
         if not features:
             return [0.0] * self.n_actions

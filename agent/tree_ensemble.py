@@ -33,10 +33,10 @@ from os import PathLike
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 from gymnasium import spaces
 
 from agent.config import TreeConfig
+from agent.env_checks import observation_vector
 from agent.episode_stats import EpisodeStats
 from agent.exploration import Exploration, Greedy
 from agent.exploration.base import greedy_action
@@ -195,7 +195,7 @@ class TreeEnsembleAgent(TreeAgent):
     def predict(self, obs: Any, deterministic: bool = True) -> int:
         """The greedy action of the mean row (lowest index among ties); with
         ``deterministic=False`` the exploration strategy chooses on the mean row."""
-        x = np.asarray(obs, dtype=np.float64).reshape(-1).tolist()
+        x = observation_vector(obs, len(self.bounds[0]), "predict")
         leaves = self._leaves(x)
         row = self.mean_row(leaves)
         if deterministic:  # smoothing moves by tree 0's leaf and reads every tree's row

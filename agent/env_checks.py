@@ -1,0 +1,164 @@
+"""What an agent takes from an env, checked as it arrives.
+
+A user's own env can hand an agent a NaN, an infinity, an observation of the wrong size, a
+reward that is not a number, or the old gym API's four values. Unchecked, such a value either
+poisons Q-bar silently (a NaN reward is accepted and every backup after it is NaN) or fails deep
+inside the learner with a message that names neither the value nor where it came from. Here
+each value is checked where it enters:
+
+* :class:`CheckedEnv` wraps a user's env for ``learn``: every ``reset`` and ``step`` result is
+  checked (Gymnasium's API: ``(obs, info)`` and ``(obs, reward, terminated, truncated, info)``)
+  and passed on unchanged, so a valid env's run is the same, bit for bit;
+* :func:`observation_vector` reads ``predict``'s observation.
+
+Every defect is a ValueError naming the value, the call it came from (``env.step`` at step 12 of
+the ``learn`` call's episode 3, or ``predict``) and what was expected. Gymnasium's own
+``PassiveEnvChecker`` looks at the first ``reset`` and ``step`` only, and only warns.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+MAX_REWARD_MAGNITUDE = 1e100
+"""The largest reward magnitude an agent takes: the learners square rewards (variances, the
+measured reward unit), and the square of a larger one overflows a float."""
+
+
+def observation_vector(obs: Any, n_inputs: int, where: str) -> list[float]:
+    """``obs`` as a flat list of ``n_inputs`` finite floats; a ValueError naming the value and
+    ``where`` it came from otherwise."""
+    try:
+        values = np.asarray(obs, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{where}: observation {obs!r} is not numeric ({exc})") from None
+    if values.size != n_inputs:
+        raise ValueError(
+            f"{where}: observation has {values.size} values (shape {values.shape}), but the "
+            f"agent's observation space has {n_inputs}"
+        )
+    flat = values.reshape(-1)
+    finite = np.isfinite(flat)
+    if not finite.all():
+        bad = [int(i) for i in np.flatnonzero(~finite)]
+        raise ValueError(
+            f"{where}: observation {flat.tolist()} is not finite at input(s) {bad}; an agent "
+            "takes finite observations (a diverged simulation, or a sensor with no reading?)"
+        )
+    return flat.tolist()
+
+
+def checked_reward(reward: Any, where: str) -> float:
+    """``reward`` as a float: a real number (not a bool), finite, at most
+    :data:`MAX_REWARD_MAGNITUDE` in magnitude; a ValueError naming it otherwise."""
+    if isinstance(reward, bool | np.bool_) or not isinstance(
+        reward, int | float | np.integer | np.floating
+    ):
+        if isinstance(reward, np.ndarray) and reward.shape == ():
+            return checked_reward(reward.item(), where)
+        raise ValueError(
+            f"{where}: reward {reward!r} ({type(reward).__name__}) is not a real number; "
+            "an agent takes one scalar reward a step"
+        )
+    try:
+        value = float(reward)
+    except OverflowError:  # an int too large for a float
+        raise ValueError(
+            f"{where}: reward is an integer too large for a float ({len(str(abs(reward)))} "
+            "digits); scale the rewards down (a reward wrapper)"
+        ) from None
+    if not math.isfinite(value):
+        raise ValueError(f"{where}: reward {value!r} is not finite")
+    if abs(value) > MAX_REWARD_MAGNITUDE:
+        raise ValueError(
+            f"{where}: reward {reward!r} is beyond +-{MAX_REWARD_MAGNITUDE:g}; scale the rewards "
+            "down (a reward wrapper)"
+        )
+    return value
+
+
+def _check_flag(value: Any, name: str, where: str) -> None:
+    if isinstance(value, bool | np.bool_):
+        return
+    if isinstance(value, int | np.integer) and value in (0, 1):
+        return
+    raise ValueError(f"{where}: {name} {value!r} ({type(value).__name__}) is not a bool")
+
+
+class CheckedEnv:
+    """``env`` for ``learn``, with every ``reset`` and ``step`` result checked (module
+    docstring) and passed on unchanged; any other attribute is ``env``'s own."""
+
+    def __init__(self, env: Any, n_inputs: int) -> None:
+        self.env = env
+        self.n_inputs = n_inputs
+        self.episode = -1
+        self.steps = 0
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.env, name)
+
+    def reset(self, **kwargs: Any) -> Any:
+        """``env.reset(**kwargs)``, checked: ``(obs, info)`` with a valid observation."""
+        self.episode += 1
+        self.steps = 0
+        result = self.env.reset(**kwargs)
+        where = f"env.reset (the learn call's episode {self.episode})"
+        if not isinstance(result, tuple) or len(result) != 2:
+            raise ValueError(
+                f"{where} returned {_describe(result)}; Gymnasium's API returns (obs, info) "
+                "(an env written for the old gym API needs a compatibility wrapper, such as "
+                "shimmy's)"
+            )
+        observation_vector(result[0], self.n_inputs, where)
+        return result
+
+    def step(self, action: Any) -> Any:
+        """``env.step(action)``, checked: five values, a valid observation and reward, bool
+        ``terminated`` and ``truncated``, a dict ``info``."""
+        self.steps += 1
+        result = self.env.step(action)
+        where = f"env.step (step {self.steps} of the learn call's episode {self.episode})"
+        if not isinstance(result, tuple) or len(result) != 5:
+            raise ValueError(
+                f"{where} returned {_describe(result)}; Gymnasium's API returns five values "
+                "(obs, reward, terminated, truncated, info) (an env written for the old gym "
+                "API needs a compatibility wrapper, such as shimmy's)"
+            )
+        obs, reward, terminated, truncated, info = result
+        if not _plain_step(obs, reward, terminated, truncated, info, self.n_inputs):
+            observation_vector(obs, self.n_inputs, where)
+            checked_reward(reward, where)
+            _check_flag(terminated, "terminated", where)
+            _check_flag(truncated, "truncated", where)
+            if not isinstance(info, dict):
+                raise ValueError(f"{where}: info {info!r} ({type(info).__name__}) is not a dict")
+        return result
+
+
+def _plain_step(
+    obs: Any, reward: Any, terminated: Any, truncated: Any, info: Any, n_inputs: int
+) -> bool:
+    """Whether a step's values are of the common valid kinds (a float ndarray of the right
+    size, finite; a float reward within bounds; bools; a dict): ``step``'s quick path, about a
+    microsecond. False means "check closely", not "invalid"."""
+    if type(obs) is not np.ndarray or obs.size != n_inputs or obs.dtype.kind != "f":
+        return False
+    if type(terminated) is not bool or type(truncated) is not bool or type(info) is not dict:
+        return False
+    if type(reward) is float or type(reward) is int:
+        if not -MAX_REWARD_MAGNITUDE <= reward <= MAX_REWARD_MAGNITUDE:
+            return False
+    else:
+        return False
+    isfinite = math.isfinite
+    return all(map(isfinite, obs.ravel().tolist()))
+
+
+def _describe(result: Any) -> str:
+    if isinstance(result, tuple):
+        return f"{len(result)} values"
+    return f"a {type(result).__name__}, not a tuple"
