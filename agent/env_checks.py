@@ -142,20 +142,27 @@ class CheckedEnv:
 def _plain_step(
     obs: Any, reward: Any, terminated: Any, truncated: Any, info: Any, n_inputs: int
 ) -> bool:
-    """Whether a step's values are of the common valid kinds (a float ndarray of the right
-    size, finite; a float reward within bounds; bools; a dict): ``step``'s quick path, about a
-    microsecond. False means "check closely", not "invalid"."""
-    if type(obs) is not np.ndarray or obs.size != n_inputs or obs.dtype.kind != "f":
+    """Whether a step's values are of the common valid kinds (a numeric ndarray of the right
+    size, finite; a float or int reward within bounds; bools; a dict): ``step``'s quick path,
+    about a microsecond. False means "check closely", not "invalid"."""
+    if type(obs) is not np.ndarray or obs.size != n_inputs:
+        return False
+    kind = obs.dtype.kind
+    if kind not in "fiub":
         return False
     if type(terminated) is not bool or type(truncated) is not bool or type(info) is not dict:
         return False
-    if type(reward) is float or type(reward) is int:
-        if not -MAX_REWARD_MAGNITUDE <= reward <= MAX_REWARD_MAGNITUDE:
-            return False
-    else:
+    if type(reward) not in _PLAIN_REWARDS:
         return False
+    if not -MAX_REWARD_MAGNITUDE <= reward <= MAX_REWARD_MAGNITUDE:  # NaN fails too
+        return False
+    if kind != "f":
+        return True  # integers and bools are finite
     isfinite = math.isfinite
     return all(map(isfinite, obs.ravel().tolist()))
+
+
+_PLAIN_REWARDS = (float, int, np.float64, np.float32)
 
 
 def _describe(result: Any) -> str:

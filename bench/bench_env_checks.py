@@ -1,0 +1,91 @@
+"""The cost of checking what a user's env hands an agent (issue 9, part 39; ``agent.env_checks``).
+
+``learn`` wraps a user's env in :class:`agent.env_checks.CheckedEnv`, which checks every
+``reset`` and ``step`` result before the agent reads it. This prints, per learner and task, the
+CPU seconds of ``--episodes`` learning episodes with the check and with it taken out, in
+interleaved rounds (agent and reset seed = the round; CPU time of this process, the agent built
+before the clock starts), their ratio (median over rounds, with its range), and whether the two
+runs of each round ended the same (they must: the check only reads). The tile coder is the
+fastest learner per step, so its ratio is the upper bound of the check's cost.
+
+    python bench/bench_env_checks.py                 # 3 rounds, about 2 minutes
+    python bench/bench_env_checks.py --rounds 1 --episodes 20
+"""
+
+from __future__ import annotations
+
+import argparse
+import gc
+import statistics
+import time
+from typing import Any
+
+import gymnasium as gym
+
+import agent.adaptive_q
+import agent.learner
+import agent.tile_coding
+from agent import TileCodingAgent, adapt_env, preset
+from agent.env_checks import CheckedEnv
+
+CASES = (("general", "Acrobot-v1", 100), ("tile", "CartPole-v1", 300), ("tile", "Acrobot-v1", 100))
+MODULES = (agent.learner, agent.tile_coding, agent.adaptive_q)
+
+
+def _unchecked(env: Any, n_inputs: int) -> Any:
+    return env
+
+
+def learning_run(
+    kind: str, task: str, checked: bool, episodes: int, seed: int
+) -> tuple[float, Any]:
+    """CPU seconds of ``episodes`` learning episodes, and what the run ended with."""
+    for module in MODULES:
+        module.CheckedEnv = CheckedEnv if checked else _unchecked  # type: ignore[attr-defined]
+    try:
+        env = adapt_env(gym.make(task))
+        if kind == "tile":
+            learner: Any = TileCodingAgent(env.observation_space, env.action_space, seed)
+        else:
+            learner = preset(kind).agent(env.observation_space, env.action_space, seed)
+        gc.collect()
+        start = time.process_time()
+        history = learner.learn(env, episodes, reset_seed=seed)
+        cpu = time.process_time() - start
+        env.close()
+    finally:
+        for module in MODULES:
+            module.CheckedEnv = CheckedEnv  # type: ignore[attr-defined]
+    return cpu, ([h.steps for h in history], [h.episode_return for h in history])
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument(
+        "--episodes", type=int, default=None, help="episodes a run (default: per case)"
+    )
+    args = parser.parse_args()
+    print(f"{args.rounds} interleaved rounds")
+    print(
+        "learner, task | episodes | CPU-s unchecked | checked | ratio (median, range) | same runs"
+    )
+    for kind, task, default_episodes in CASES:
+        episodes = args.episodes or default_episodes
+        bare, checked, ratios, same = [], [], [], True
+        for seed in range(args.rounds):
+            cpu_bare, end_bare = learning_run(kind, task, False, episodes, seed)
+            cpu_checked, end_checked = learning_run(kind, task, True, episodes, seed)
+            bare.append(cpu_bare)
+            checked.append(cpu_checked)
+            ratios.append(cpu_checked / cpu_bare)
+            same = same and end_bare == end_checked
+        print(
+            f"{kind}, {task} | {episodes} | {statistics.median(bare):.2f} | "
+            f"{statistics.median(checked):.2f} | {statistics.median(ratios):.3f}x "
+            f"({min(ratios):.3f}-{max(ratios):.3f}) | {'yes' if same else 'NO'}"
+        )
+
+
+if __name__ == "__main__":
+    main()
