@@ -38,6 +38,7 @@ from typing import Any, get_type_hints
 
 import tomli_w
 from gymnasium.envs.registration import load_env_creator, registry
+from gymnasium.error import DependencyNotInstalled
 
 import bullet_maze
 from agent.presets import preset as named_preset
@@ -345,15 +346,26 @@ class _Checked:
         self.check = check
 
 
-def _constructor(env_id: str) -> tuple[inspect.Signature, dict[str, Any]] | None:
-    """The signature and resolved annotations of an id's environment class (None if unknown)."""
+def _constructor(env_id: str, where: str) -> tuple[inspect.Signature, dict[str, Any]] | None:
+    """The signature and resolved annotations of an id's environment class (None if unknown);
+    a ConfigError at ``where`` when the class needs a package that is not installed
+    (Gymnasium's ``DependencyNotInstalled``, such as Box2D for LunarLander, or an import that
+    fails), since no run of the task could make its env."""
     entry = registry[env_id].entry_point
     if not isinstance(entry, str):
         return None
     try:
         creator = load_env_creator(entry)
+    except (DependencyNotInstalled, ImportError) as exc:
+        raise ConfigError(
+            f"{where}: {env_id!r} cannot be made on this machine, a package it needs is "
+            f"missing: {exc}"
+        ) from None
+    except (AttributeError, TypeError, ValueError):
+        return None
+    try:
         signature = inspect.signature(creator)
-    except (ImportError, AttributeError, TypeError, ValueError):
+    except (TypeError, ValueError):
         return None
     target: Any = creator.__init__ if isinstance(creator, type) else creator  # type: ignore[misc]
     try:
@@ -957,7 +969,7 @@ class _Reader:
             1,
             MAX_EPISODE_CAP,
         )
-        constructor = _constructor(env_id)
+        constructor = _constructor(env_id, f"{self.source}: [{at('id')}] id")
         if constructor is not None:
             self.env_params(params, constructor, env_id, f"{at('params')}.params")
         bounds = self.observation_bounds(table, at("observation_bounds"))

@@ -150,3 +150,31 @@ def test_agent_parameters_are_checked_against_the_agent(small_data, edit, named)
 def test_shipped_experiments_pass_every_check(name):
     config = load_config(name)
     assert config.env.is_maze
+
+
+def test_a_task_whose_package_is_missing_is_refused_by_name(monkeypatch):
+    """An env that needs a package this machine lacks (Box2D for LunarLander on the CI machine)
+    is refused when the file is read, naming the file, the task and the package, not when a
+    worker first makes it."""
+    from gymnasium.error import DependencyNotInstalled
+
+    import experiments.config as config_module
+
+    original = config_module.load_env_creator
+
+    def missing(entry_point):
+        if "box2d" in entry_point:
+            raise DependencyNotInstalled("Box2D is not installed, run `pip install box2d`")
+        return original(entry_point)
+
+    monkeypatch.setattr(config_module, "load_env_creator", missing)
+    data = {
+        "experiment": {"name": "lander", "runs": 1, "episodes": 1},
+        "task": [{"id": "CartPole-v1"}, {"id": "LunarLander-v3"}],
+        "strategy": [{"name": "general", "preset": "general"}],
+    }
+    with pytest.raises(ConfigError) as error:
+        parse_config(data, source="lander.toml")
+    message = str(error.value)
+    assert message.startswith("lander.toml: [task.1] id: 'LunarLander-v3' cannot be made"), message
+    assert "Box2D is not installed" in message
