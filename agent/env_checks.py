@@ -121,6 +121,8 @@ class CheckedEnv:
         ``terminated`` and ``truncated``, a dict ``info``."""
         self.steps += 1
         result = self.env.step(action)
+        if type(result) is tuple and len(result) == 5 and _plain_step(*result, self.n_inputs):
+            return result
         where = f"env.step (step {self.steps} of the learn call's episode {self.episode})"
         if not isinstance(result, tuple) or len(result) != 5:
             raise ValueError(
@@ -129,40 +131,44 @@ class CheckedEnv:
                 "API needs a compatibility wrapper, such as shimmy's)"
             )
         obs, reward, terminated, truncated, info = result
-        if not _plain_step(obs, reward, terminated, truncated, info, self.n_inputs):
-            observation_vector(obs, self.n_inputs, where)
-            checked_reward(reward, where)
-            _check_flag(terminated, "terminated", where)
-            _check_flag(truncated, "truncated", where)
-            if not isinstance(info, dict):
-                raise ValueError(f"{where}: info {info!r} ({type(info).__name__}) is not a dict")
+        observation_vector(obs, self.n_inputs, where)
+        checked_reward(reward, where)
+        _check_flag(terminated, "terminated", where)
+        _check_flag(truncated, "truncated", where)
+        if not isinstance(info, dict):
+            raise ValueError(f"{where}: info {info!r} ({type(info).__name__}) is not a dict")
         return result
 
 
 def _plain_step(
     obs: Any, reward: Any, terminated: Any, truncated: Any, info: Any, n_inputs: int
 ) -> bool:
-    """Whether a step's values are of the common valid kinds (a numeric ndarray of the right
-    size, finite; a float or int reward within bounds; bools; a dict): ``step``'s quick path,
-    about a microsecond. False means "check closely", not "invalid"."""
-    if type(obs) is not np.ndarray or obs.size != n_inputs:
-        return False
-    kind = obs.dtype.kind
-    if kind not in "fiub":
-        return False
+    """Whether a step's values are of the common valid kinds (a numeric ndarray, or a flat list
+    or tuple of Python or numpy floats and ints, of the right size, finite; such a reward
+    within bounds; bools; a dict): ``step``'s quick path, about a microsecond. False means
+    "check closely", not "invalid"."""
     if type(terminated) is not bool or type(truncated) is not bool or type(info) is not dict:
         return False
     if type(reward) not in _PLAIN_REWARDS:
         return False
     if not -MAX_REWARD_MAGNITUDE <= reward <= MAX_REWARD_MAGNITUDE:  # NaN fails too
         return False
-    if kind != "f":
-        return True  # integers and bools are finite
-    isfinite = math.isfinite
-    return all(map(isfinite, obs.ravel().tolist()))
+    if type(obs) is np.ndarray:
+        if obs.size != n_inputs:
+            return False
+        kind = obs.dtype.kind
+        if kind == "f":
+            return all(map(math.isfinite, obs.ravel().tolist()))
+        return kind in "iub"  # integers and bools are finite
+    if type(obs) is list or type(obs) is tuple:
+        if len(obs) != n_inputs or not all(type(v) in _PLAIN_REWARDS for v in obs):
+            return False
+        return all(map(math.isfinite, obs))
+    return False
 
 
 _PLAIN_REWARDS = (float, int, np.float64, np.float32)
+"""The scalar types of the quick path (bool is not among them: a bool reward is refused)."""
 
 
 def _describe(result: Any) -> str:

@@ -15,20 +15,30 @@ fastest learner per step, so its ratio is the upper bound of the check's cost.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import gc
 import statistics
 import time
 from typing import Any
 
 import gymnasium as gym
+from bench_agent import TrivialEnv  # bench/ is the script's folder
 
 import agent.adaptive_q
 import agent.learner
 import agent.tile_coding
-from agent import TileCodingAgent, adapt_env, preset
+from agent import TileCodingAgent, TreeAgent, adapt_env, preset
 from agent.env_checks import CheckedEnv
 
-CASES = (("general", "Acrobot-v1", 100), ("tile", "CartPole-v1", 300), ("tile", "Acrobot-v1", 100))
+CASES = (
+    ("general", "Acrobot-v1", 100),
+    ("tile", "CartPole-v1", 300),
+    ("tile", "Acrobot-v1", 100),
+    ("paper", "trivial", 20),
+)
+"""(learner, task, default episodes). ``trivial`` is ``bench_agent.TrivialEnv`` (a pure-Python
+point in a box at about a million steps/s, 5,000-step episodes): the check's cost per step
+beside an env that costs almost nothing, the paper's tree capped at 500 leaves."""
 MODULES = (agent.learner, agent.tile_coding, agent.adaptive_q)
 
 
@@ -43,16 +53,22 @@ def learning_run(
     for module in MODULES:
         module.CheckedEnv = CheckedEnv if checked else _unchecked  # type: ignore[attr-defined]
     try:
-        env = adapt_env(gym.make(task))
-        if kind == "tile":
-            learner: Any = TileCodingAgent(env.observation_space, env.action_space, seed)
+        env = TrivialEnv() if task == "trivial" else adapt_env(gym.make(task))
+        if task == "trivial":
+            config = dataclasses.replace(preset(kind).config, max_leaves=500)
+            learner: Any = TreeAgent(
+                env.observation_space, env.action_space, "adaptive+tabu", seed, config
+            )
+        elif kind == "tile":
+            learner = TileCodingAgent(env.observation_space, env.action_space, seed)
         else:
             learner = preset(kind).agent(env.observation_space, env.action_space, seed)
         gc.collect()
         start = time.process_time()
         history = learner.learn(env, episodes, reset_seed=seed)
         cpu = time.process_time() - start
-        env.close()
+        if task != "trivial":
+            env.close()
     finally:
         for module in MODULES:
             module.CheckedEnv = CheckedEnv  # type: ignore[attr-defined]
