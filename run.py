@@ -35,6 +35,7 @@ from experiments import (
     Experiment,
     FolderState,
     Playback,
+    RunFailed,
     TasksLost,
     TrainJob,
     Transfer,
@@ -68,6 +69,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.exit(2, f"run.py {command}: error: {error}\n")
     except TasksLost as error:
         print(f"run.py {command}: {error}; finished runs are kept.", file=sys.stderr)
+        return 1
+    except RunFailed as error:
+        logging.getLogger(__name__).debug("the failed run's traceback", exc_info=error.__cause__)
+        cause = str(error).rstrip(".")
+        print(
+            f"run.py {command}: error: {cause}. Finished runs are kept; the same command "
+            "resumes once the cause is fixed (-v shows the traceback).",
+            file=sys.stderr,
+        )
         return 1
     except KeyboardInterrupt:
         print("\ninterrupted: finished runs are kept; the same command resumes.", file=sys.stderr)

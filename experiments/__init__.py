@@ -57,6 +57,7 @@ if TYPE_CHECKING:
     from experiments.jobs import EnvOptions, Experiment, Playback, TrainJob
     from experiments.layout_sheet import draw_layout_sheet, draw_suite_sheet
     from experiments.runner import FolderState
+    from experiments.training import RunFailed
     from experiments.transfer import Transfer
 
 _EXPORTS = {
@@ -72,6 +73,7 @@ _EXPORTS = {
     "Playback": "experiments.jobs",
     "TrainJob": "experiments.jobs",
     "FolderState": "experiments.runner",
+    "RunFailed": "experiments.training",
     "Transfer": "experiments.transfer",
     "draw_layout_sheet": "experiments.layout_sheet",
     "draw_suite_sheet": "experiments.layout_sheet",
@@ -88,6 +90,7 @@ __all__ = [
     "Experiment",
     "FolderState",
     "Playback",
+    "RunFailed",
     "TasksLost",
     "TrainJob",
     "Transfer",

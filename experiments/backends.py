@@ -228,8 +228,8 @@ class ProcessBackend:
                             died = True
                         else:
                             worker.task = None
-                            if reply[0] != "ok":
-                                log.error(
+                            if reply[0] != "ok":  # the driver shows the error it raises
+                                log.debug(
                                     "task %s failed in a worker:\n%s",
                                     _label(tasks[reply[1]]),
                                     reply[3],

@@ -123,7 +123,22 @@ def policy_bytes(agent: Any) -> bytes:
         return Path(agent.save(Path(folder) / "agent.npz", policy_only=True)).read_bytes()
 
 
+class RunFailed(RuntimeError):
+    """A run could not finish: its env or agent raised (a user's env that hands the agent a NaN,
+    an env id a worker cannot make). The message names the run and the cause; runs finished
+    before it are kept, and the same command resumes once the cause is fixed."""
+
+
 def train_run(spec: RunSpec) -> RunResult:
+    """:func:`_train_run`, with any error it raises (an ``Exception``, not an interrupt) given
+    back as :class:`RunFailed` naming the run."""
+    try:
+        return _train_run(spec)
+    except Exception as error:
+        raise RunFailed(f"run {spec.name} failed: {type(error).__name__}: {error}") from error
+
+
+def _train_run(spec: RunSpec) -> RunResult:
     """The task of one run: a fresh environment and agent seeded from the run's seed, trained,
     then (if the experiment asks) evaluated greedily from the run's evaluation seed.
 
