@@ -52,12 +52,11 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from experiments.backends import BACKENDS, TasksLost, default_workers, make_backend
+    from experiments.backends import BACKENDS, RunFailed, TasksLost, default_workers, make_backend
     from experiments.config import EXPERIMENT_DIR, MODES, ConfigError
     from experiments.jobs import EnvOptions, Experiment, Playback, TrainJob
     from experiments.layout_sheet import draw_layout_sheet, draw_suite_sheet
     from experiments.runner import FolderState
-    from experiments.training import RunFailed
     from experiments.transfer import Transfer
 
 _EXPORTS = {
@@ -73,7 +72,7 @@ _EXPORTS = {
     "Playback": "experiments.jobs",
     "TrainJob": "experiments.jobs",
     "FolderState": "experiments.runner",
-    "RunFailed": "experiments.training",
+    "RunFailed": "experiments.backends",
     "Transfer": "experiments.transfer",
     "draw_layout_sheet": "experiments.layout_sheet",
     "draw_suite_sheet": "experiments.layout_sheet",

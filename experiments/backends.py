@@ -57,6 +57,17 @@ class TasksLost(RuntimeError):
         )
 
 
+class RunFailed(RuntimeError):
+    """A task could not finish: its env or agent raised (a user's env that hands the agent a
+    NaN, an env id a worker cannot make). The message names the run or cell and the cause;
+    what finished before it is kept, and the same command resumes once the cause is fixed."""
+
+    @classmethod
+    def of(cls, what: str, error: Exception) -> RunFailed:
+        """The failure of ``what`` ("run NAME", "cell NAME") by ``error``."""
+        return cls(f"{what} failed: {type(error).__name__}: {error}")
+
+
 def _label(task: Any) -> str:
     return str(getattr(task, "name", task))
 

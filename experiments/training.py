@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from experiments import factory, fingerprint
+from experiments.backends import RunFailed
 from experiments.evaluation import evaluate
 from experiments.plan import RunSpec
 from experiments.seeding import derive_seeds
@@ -123,19 +124,13 @@ def policy_bytes(agent: Any) -> bytes:
         return Path(agent.save(Path(folder) / "agent.npz", policy_only=True)).read_bytes()
 
 
-class RunFailed(RuntimeError):
-    """A run could not finish: its env or agent raised (a user's env that hands the agent a NaN,
-    an env id a worker cannot make). The message names the run and the cause; runs finished
-    before it are kept, and the same command resumes once the cause is fixed."""
-
-
 def train_run(spec: RunSpec) -> RunResult:
     """:func:`_train_run`, with any error it raises (an ``Exception``, not an interrupt) given
     back as :class:`RunFailed` naming the run."""
     try:
         return _train_run(spec)
     except Exception as error:
-        raise RunFailed(f"run {spec.name} failed: {type(error).__name__}: {error}") from error
+        raise RunFailed.of(f"run {spec.name}", error) from error
 
 
 def _train_run(spec: RunSpec) -> RunResult:

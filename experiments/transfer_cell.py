@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from experiments import factory, fingerprint, store
+from experiments.backends import RunFailed
 from experiments.config import EnvSpec
 from experiments.evaluation import evaluate
 
@@ -123,7 +124,15 @@ def cell_inputs(cell: Cell, env_prints: Mapping[str, Any] | None = None) -> dict
 
 def evaluate_cell(cell: Cell) -> CellResult:
     """The task of one cell (picklable, for the backends): the agent loaded, its greedy
-    episodes in the condition's environment, and the inputs this worker actually used."""
+    episodes in the condition's environment, and the inputs this worker actually used; any
+    error it raises comes back as :class:`experiments.backends.RunFailed` naming the cell."""
+    try:
+        return _evaluate_cell(cell)
+    except Exception as error:
+        raise RunFailed.of(f"cell {cell.name}", error) from error
+
+
+def _evaluate_cell(cell: Cell) -> CellResult:
     raw = cell.agent.path.read_bytes()
     agent = factory.load_agent(cell.agent.path)
     env = factory.make_env(cell.env)

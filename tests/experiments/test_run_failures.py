@@ -101,3 +101,20 @@ def test_a_run_failed_in_a_worker_is_one_line_too(nan_env, tmp_path: Path, capsy
     assert f"run.py experiment: error: run {nan_env}/general__" in err, err
     assert ("NameNotFound" in err) != ("reward nan is not finite" in err), err
     assert err.count("\n") == 1, err
+
+
+def test_a_transfer_cell_that_raises_is_named(monkeypatch):
+    """``run.py transfer``'s task gives its errors back the same way, naming the cell."""
+    from types import SimpleNamespace
+
+    from experiments import RunFailed, transfer_cell
+
+    def broken(cell: Any) -> Any:
+        raise ValueError("the robot's URDF has no base")
+
+    monkeypatch.setattr(transfer_cell, "_evaluate_cell", broken)
+    with pytest.raises(RunFailed) as caught:
+        transfer_cell.evaluate_cell(SimpleNamespace(name="agent-3/husky-dynamic-mild"))
+    assert str(caught.value) == (
+        "cell agent-3/husky-dynamic-mild failed: ValueError: the robot's URDF has no base"
+    )
