@@ -31,8 +31,9 @@ def main(argv: list[str]) -> None:
     general = preset("general")
     for seed in map(int, argv[4:]):
         env = adapt_env(gym.make(task))
-        agent = tree_agent_class(general.config)(
-            env.observation_space, env.action_space, general.make_exploration(), seed, general.config
+        config = general.config
+        agent = tree_agent_class(config)(
+            env.observation_space, env.action_space, general.make_exploration(), seed, config
         )
         start = time.process_time()
         agent.learn(env, 1000, reset_seed=seed)
