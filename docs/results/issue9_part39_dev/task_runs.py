@@ -6,7 +6,8 @@ Trains for EPISODES episodes from reset seed = agent seed, then plays 20 greedy 
 seeds 10^6 + 1,000 seed + i). One JSON line per seed: the mean training return of each tenth of
 the run, the mean greedy return, the leaves, whether the failure latch closed, the CPU seconds, and
 the steps per epoch over the last tenth.
-``AS_OF`` (optional) starts from ``agent.general_as_of(AS_OF)`` instead of today's preset.
+``AS_OF`` (optional) starts from ``agent.general_as_of(AS_OF)`` instead of today's preset;
+``PRESET`` (optional, default ``general``) names another preset (its exploration too).
 """
 
 from __future__ import annotations
@@ -27,12 +28,13 @@ from agent.tree_ensemble import tree_agent_class
 
 OVERRIDES = json.loads(os.environ.get("OVERRIDES", "{}"))
 AS_OF = os.environ.get("AS_OF")
+PRESET = os.environ.get("PRESET", "general")
 
 
 def main(argv: list[str]) -> None:
     warnings.simplefilter("ignore")
     task, episodes, out = argv[1], int(argv[2]), Path(argv[3])
-    general = preset("general")
+    general = preset(PRESET)
     base = general.config if AS_OF is None else general_as_of(int(AS_OF))
     config = dataclasses.replace(base, **OVERRIDES)
     for seed in map(int, argv[4:]):
@@ -57,7 +59,8 @@ def main(argv: list[str]) -> None:
                 total += float(reward)
                 done = term or trunc
             returns.append(total)
-        row = {"task": task, "seed": seed, "as_of": AS_OF, "overrides": OVERRIDES, "cpu": cpu}
+        row = {"task": task, "seed": seed, "preset": PRESET, "as_of": AS_OF, "cpu": cpu}
+        row["overrides"] = OVERRIDES
         row["leaves"] = agent.n_leaves
         row["latched"] = bool(getattr(agent, "failure_discount", False))
         row["curve"] = curve
