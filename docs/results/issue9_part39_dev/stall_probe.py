@@ -30,6 +30,7 @@ from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
+from protocol import GREEDY_EPISODES, reset_seed  # this folder
 
 from agent import SMDPAgent, adapt_env
 
@@ -44,10 +45,10 @@ def main(argv: list[str]) -> None:
         agent = SMDPAgent.load(agent_dir / f"{task}-{seed}.npz")
         env = adapt_env(gym.make(task))
         returns, lengths, fired, most = [], [], [], []
-        for i in range(20):
-            reset_seed = 1_000_000 + 1000 * seed + i
-            rng = np.random.default_rng(reset_seed)
-            obs, _ = env.reset(seed=reset_seed)
+        for i in range(GREEDY_EPISODES):
+            reset = reset_seed(seed, i)
+            rng = np.random.default_rng(reset)
+            obs, _ = env.reset(seed=reset)
             entries: Counter[int] = Counter()
             previous, first_fire, on = -1, None, False
             total, steps, done = 0.0, 0, False

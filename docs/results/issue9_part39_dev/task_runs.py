@@ -22,6 +22,7 @@ from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
+from protocol import greedy_episodes, tenths  # this folder
 
 from agent import adapt_env, general_as_of, preset
 from agent.tree_ensemble import tree_agent_class
@@ -45,26 +46,14 @@ def main(argv: list[str]) -> None:
         start = time.process_time()
         history = agent.learn(env, episodes, reset_seed=seed)
         cpu = round(time.process_time() - start, 1)
-        tenth = max(1, episodes // 10)
-        curve = [
-            round(float(np.mean([h.episode_return for h in history[i : i + tenth]])), 1)
-            for i in range(0, episodes, tenth)
-        ]
-        returns = []
-        for i in range(20):
-            obs, _ = env.reset(seed=1_000_000 + 1000 * seed + i)
-            total, done = 0.0, False
-            while not done:
-                obs, reward, term, trunc, _ = env.step(agent.predict(obs))
-                total += float(reward)
-                done = term or trunc
-            returns.append(total)
+        curve = tenths(history, episodes)
+        returns, _ = greedy_episodes(env, agent.predict, seed)
         row = {"task": task, "seed": seed, "preset": PRESET, "as_of": AS_OF, "cpu": cpu}
         row["overrides"] = OVERRIDES
         row["leaves"] = agent.n_leaves
         row["latched"] = bool(getattr(agent, "failure_discount", False))
         row["curve"] = curve
-        late = history[-tenth:]
+        late = history[-max(1, episodes // 10) :]
         row["steps_per_epoch"] = round(
             sum(h.steps for h in late) / max(1, sum(h.epochs for h in late)), 2
         )

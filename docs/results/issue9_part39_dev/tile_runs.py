@@ -16,6 +16,7 @@ from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
+from protocol import greedy_episodes, tenths  # this folder
 
 from agent import TileCodingAgent, adapt_env
 
@@ -27,20 +28,8 @@ def main(argv: list[str]) -> None:
         env = adapt_env(gym.make(task))
         agent = TileCodingAgent(env.observation_space, env.action_space, seed)
         history = agent.learn(env, episodes, reset_seed=seed)
-        tenth = max(1, episodes // 10)
-        curve = [
-            round(float(np.mean([h.episode_return for h in history[i : i + tenth]])), 1)
-            for i in range(0, episodes, tenth)
-        ]
-        returns = []
-        for i in range(20):
-            obs, _ = env.reset(seed=1_000_000 + 1000 * seed + i)
-            total, done = 0.0, False
-            while not done:
-                obs, reward, term, trunc, _ = env.step(agent.predict(obs))
-                total += float(reward)
-                done = term or trunc
-            returns.append(total)
+        curve = tenths(history, episodes)
+        returns, _ = greedy_episodes(env, agent.predict, seed)
         row = {"task": task, "seed": seed, "agent": "tile", "curve": curve}
         row["greedy"] = round(float(np.mean(returns)), 2)
         with out.open("a") as f:

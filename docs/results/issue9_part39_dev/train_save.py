@@ -19,6 +19,7 @@ from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
+from protocol import greedy_episodes  # this folder
 
 from agent import adapt_env, preset
 from agent.tree_ensemble import tree_agent_class
@@ -39,17 +40,7 @@ def main(argv: list[str]) -> None:
         agent.learn(env, 1000, reset_seed=seed)
         cpu = round(time.process_time() - start, 1)
         agent.save(agent_dir / f"{task}-{seed}.npz", policy_only=True)
-        returns, lengths = [], []
-        for i in range(20):
-            obs, _ = env.reset(seed=1_000_000 + 1000 * seed + i)
-            total, steps, done = 0.0, 0, False
-            while not done:
-                obs, reward, term, trunc, _ = env.step(agent.predict(obs))
-                total += float(reward)
-                steps += 1
-                done = term or trunc
-            returns.append(total)
-            lengths.append(steps)
+        returns, lengths = greedy_episodes(env, agent.predict, seed)
         row = {"task": task, "seed": seed, "cpu": cpu, "leaves": agent.n_leaves}
         row["mean"] = round(float(np.mean(returns)), 2)
         row["long"] = sum(r <= -200 for r in returns)
