@@ -107,12 +107,7 @@ class CheckedEnv:
         self.steps = 0
         result = self.env.reset(**kwargs)
         where = f"env.reset (the learn call's episode {self.episode})"
-        if not isinstance(result, tuple) or len(result) != 2:
-            raise ValueError(
-                f"{where} returned {_describe(result)}; Gymnasium's API returns (obs, info) "
-                "(an env written for the old gym API needs a compatibility wrapper, such as "
-                "shimmy's)"
-            )
+        _check_shape(result, "(obs, info)", where)
         observation_vector(result[0], self.n_inputs, where)
         return result
 
@@ -124,12 +119,7 @@ class CheckedEnv:
         if type(result) is tuple and len(result) == 5 and _plain_step(*result, self.n_inputs):
             return result
         where = f"env.step (step {self.steps} of the learn call's episode {self.episode})"
-        if not isinstance(result, tuple) or len(result) != 5:
-            raise ValueError(
-                f"{where} returned {_describe(result)}; Gymnasium's API returns five values "
-                "(obs, reward, terminated, truncated, info) (an env written for the old gym "
-                "API needs a compatibility wrapper, such as shimmy's)"
-            )
+        _check_shape(result, "(obs, reward, terminated, truncated, info)", where)
         obs, reward, terminated, truncated, info = result
         observation_vector(obs, self.n_inputs, where)
         checked_reward(reward, where)
@@ -171,7 +161,17 @@ _PLAIN_REWARDS = (float, int, np.float64, np.float32)
 """The scalar types of the quick path (bool is not among them: a bool reward is refused)."""
 
 
-def _describe(result: Any) -> str:
-    if isinstance(result, tuple):
-        return f"{len(result)} values"
-    return f"a {type(result).__name__}, not a tuple"
+def _check_shape(result: Any, api: str, where: str) -> None:
+    """A ValueError at ``where`` unless ``result`` is a tuple of as many values as ``api``
+    names (Gymnasium's API)."""
+    if isinstance(result, tuple) and len(result) == api.count(",") + 1:
+        return
+    got = (
+        f"{len(result)} values"
+        if isinstance(result, tuple)
+        else (f"a {type(result).__name__}, not a tuple")
+    )
+    raise ValueError(
+        f"{where} returned {got}; Gymnasium's API returns {api} (an env written for the old "
+        "gym API needs a compatibility wrapper, such as shimmy's)"
+    )

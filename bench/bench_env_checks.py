@@ -17,12 +17,12 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import gc
-import statistics
 import time
 from typing import Any
 
 import gymnasium as gym
-from bench_agent import TrivialEnv  # bench/ is the script's folder
+from ab_rounds import ab_rounds  # bench/ is the script's folder
+from bench_agent import TrivialEnv
 
 import agent.adaptive_q
 import agent.learner
@@ -88,19 +88,14 @@ def main() -> None:
     )
     for kind, task, default_episodes in CASES:
         episodes = args.episodes or default_episodes
-        bare, checked, ratios, same = [], [], [], True
-        for seed in range(args.rounds):
-            cpu_bare, end_bare = learning_run(kind, task, False, episodes, seed)
-            cpu_checked, end_checked = learning_run(kind, task, True, episodes, seed)
-            bare.append(cpu_bare)
-            checked.append(cpu_checked)
-            ratios.append(cpu_checked / cpu_bare)
-            same = same and end_bare == end_checked
-        print(
-            f"{kind}, {task} | {episodes} | {statistics.median(bare):.2f} | "
-            f"{statistics.median(checked):.2f} | {statistics.median(ratios):.3f}x "
-            f"({min(ratios):.3f}-{max(ratios):.3f}) | {'yes' if same else 'NO'}"
-        )
+
+        def run(
+            checked: bool, seed: int, kind: str = kind, task: str = task, episodes: int = episodes
+        ) -> Any:
+            return learning_run(kind, task, checked, episodes, seed)
+
+        row = ab_rounds(run, args.rounds)
+        print(f"{kind}, {task} | {episodes} | {row.cells(digits=3)}")
 
 
 if __name__ == "__main__":

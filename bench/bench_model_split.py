@@ -19,11 +19,11 @@ from __future__ import annotations
 
 import argparse
 import gc
-import statistics
 import time
 from typing import Any
 
 import gymnasium as gym
+from ab_rounds import ab_rounds  # bench/ is the script's folder
 
 import agent.learner
 from agent import adapt_env, preset
@@ -62,19 +62,12 @@ def main() -> None:
     print(f"general preset, {args.episodes} episodes a run, {args.rounds} interleaved rounds")
     print("task | CPU-s bypassed | with the shortcut | ratio (median, range) | same runs")
     for task in TASKS:
-        full, short, ratios, same = [], [], [], True
-        for seed in range(args.rounds):
-            cpu_full, end_full = learning_run(task, False, args.episodes, seed)
-            cpu_short, end_short = learning_run(task, True, args.episodes, seed)
-            full.append(cpu_full)
-            short.append(cpu_short)
-            ratios.append(cpu_short / cpu_full)
-            same = same and end_full == end_short
-        print(
-            f"{task} | {statistics.median(full):.2f} | {statistics.median(short):.2f} | "
-            f"{statistics.median(ratios):.2f}x ({min(ratios):.2f}-{max(ratios):.2f}) | "
-            f"{'yes' if same else 'NO'}"
-        )
+
+        def run(shortcut: bool, seed: int, task: str = task) -> Any:
+            return learning_run(task, shortcut, args.episodes, seed)
+
+        row = ab_rounds(run, args.rounds)
+        print(f"{task} | {row.cells()}")
 
 
 if __name__ == "__main__":
