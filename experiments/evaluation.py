@@ -7,6 +7,8 @@ from typing import Any
 
 import numpy as np
 
+from agent.env_checks import checked_reward
+
 
 @dataclass(frozen=True)
 class Episode:
@@ -53,7 +55,9 @@ class Evaluation:
 def greedy_episode(
     env: Any, agent: Any, seed: int | None = None, collision_key: str = "collision"
 ) -> Episode:
-    """Run ``agent.predict(obs, deterministic=True)`` until the episode ends."""
+    """Run ``agent.predict(obs, deterministic=True)`` until the episode ends (a reward that is
+    not a finite number is a ValueError naming the step, as in training:
+    :func:`agent.env_checks.checked_reward`)."""
     obs, _ = env.reset(seed=seed)
     positions = [np.asarray(obs, dtype=float)[:2].copy()]
     steps, total, collisions = 0, 0.0, 0
@@ -61,7 +65,7 @@ def greedy_episode(
     while True:
         obs, reward, terminated, truncated, info = env.step(agent.predict(obs))
         steps += 1
-        total += float(reward)
+        total += checked_reward(reward, f"env.step (step {steps} of a greedy episode)")
         collisions += bool(info.get(collision_key, False))
         positions.append(np.asarray(obs, dtype=float)[:2].copy())
         if terminated or truncated:

@@ -118,3 +118,16 @@ def test_a_transfer_cell_that_raises_is_named(monkeypatch):
     assert str(caught.value) == (
         "cell agent-3/husky-dynamic-mild failed: ValueError: the robot's URDF has no base"
     )
+
+
+def test_a_greedy_episode_refuses_a_nan_reward_by_step():
+    """Greedy evaluation (``run.py evaluate``, the evaluation CSVs, transfer cells) reads the
+    reward as training does: a NaN is refused naming the step, never summed into a return."""
+    from types import SimpleNamespace
+
+    from experiments.evaluation import greedy_episode
+
+    env = NanReward()
+    agent = SimpleNamespace(predict=lambda obs: 0)  # a constant policy
+    with pytest.raises(ValueError, match=r"^env.step \(step 5 of a greedy episode\): reward nan"):
+        greedy_episode(env, agent, seed=0)
