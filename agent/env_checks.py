@@ -99,6 +99,8 @@ class CheckedEnv:
         self.steps = 0
 
     def __getattr__(self, name: str) -> Any:
+        if name == "env":  # not set yet (a copy being built): no recursion
+            raise AttributeError(name)
         return getattr(self.env, name)
 
     def reset(self, **kwargs: Any) -> Any:

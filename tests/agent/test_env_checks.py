@@ -212,3 +212,15 @@ def test_the_quick_path_agrees_with_the_full_checks() -> None:
         else:
             with pytest.raises(ValueError, match=r"^env.step \(step 1 "):
                 checked.step(0)
+
+
+def test_a_checked_env_copies_without_recursion() -> None:
+    """``copy`` builds the wrapper without ``__init__``; looking up ``env`` then must not
+    recurse through ``__getattr__``."""
+    import copy
+
+    checked = CheckedEnv(Fixed((ZERO.copy(), -1.0, False, False, {})), 2)
+    twin = copy.copy(checked)
+    assert twin.env is checked.env
+    assert twin.step(0)[1] == -1.0
+    assert copy.deepcopy(checked).n_inputs == 2
