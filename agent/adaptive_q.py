@@ -215,7 +215,10 @@ class AdaptiveQAgent:
         return sum(tree.n_leaves for tree in self.trees)
 
     def _input(self, obs: Any) -> list[float]:
-        x = np.asarray(obs, dtype=np.float64).reshape(-1).tolist()
+        return self._squashed(np.asarray(obs, dtype=np.float64).reshape(-1).tolist())
+
+    def _squashed(self, x: list[float]) -> list[float]:
+        """``x`` with its unbounded inputs squashed onto (-1, 1) (:func:`agent.spaces.squash`)."""
         if any(self.unbounded):
             x = [squash(v) if free else v for v, free in zip(x, self.unbounded, strict=True)]
         return x
@@ -293,8 +296,8 @@ class AdaptiveQAgent:
     def predict(self, obs: Any, deterministic: bool = True) -> int:
         """The action of the largest optimistic Q (lowest index among ties unless
         ``deterministic=False``, which breaks ties at random)."""
-        observation_vector(obs, len(self.bounds[0]), "predict")
-        values, _ = self._values(self._input(obs))
+        x = observation_vector(obs, len(self.bounds[0]), "predict")
+        values, _ = self._values(self._squashed(x))
         if deterministic:
             return greedy_among(values)
         return self._greedy(values)
