@@ -46,6 +46,7 @@ from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
 from agent.smdp import greedy_among
 from agent.spaces import action_count, observation_bounds, squash
+from agent.value_checks import check_arguments, check_seed
 
 
 class BoxTree:
@@ -173,8 +174,8 @@ class AdaptiveQAgent:
             )
         if isinstance(max_boxes, bool) or not isinstance(max_boxes, int) or max_boxes < 1:
             raise ValueError(f"AdaptiveQAgent: max_boxes must be an int >= 1, got {max_boxes!r}")
-        if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
-            raise TypeError(f"seed must be an int, got {seed!r}")
+        check_seed(seed)
+        check_arguments(AdaptiveQAgent.__init__, "AdaptiveQAgent", {"collision_key": collision_key})
         low, high = observation_bounds(observation_space, bounds, allow_unbounded=True)
         self.unbounded = [
             not (math.isfinite(lo) and math.isfinite(hi)) for lo, hi in zip(low, high, strict=True)

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from agent.scale import HORIZON_RANGE
+from agent.value_checks import check_value, plain_scalar, type_hints
 
 ErrorBuffer = Literal["clear", "window"]
 RangeNormalization = Literal["root", "none"]
@@ -479,6 +480,21 @@ class TreeConfig:
     its own leaves, as a held exploratory run is learnt (:meth:`SMDPAgent._end_held_run`)."""
 
     def __post_init__(self) -> None:
+        for field in dataclasses.fields(self):  # a numpy scalar: the Python number it holds
+            value = getattr(self, field.name)
+            plain = plain_scalar(value)
+            if plain is not value:
+                object.__setattr__(self, field.name, plain)
+        try:
+            self._check_values()
+        except (TypeError, ValueError) as error:
+            if "TreeConfig." not in str(error):  # a comparison tripped over a wrong type
+                self._check_types()
+            raise
+        self._check_types()
+
+    def _check_values(self) -> None:
+        """Each field's range and how the fields go together (a field's own message)."""
         _check_range("alpha", self.alpha, 0.0, 1.0, low_open=True)
         _check_range("gamma", self.gamma, 0.0, 1.0)
         if self.failure_gamma is not None:
@@ -695,6 +711,20 @@ class TreeConfig:
                 raise ValueError(f"TreeConfig.{name} must be a number >= 0, got {value!r}")
             if not math.isfinite(value):
                 raise ValueError(f"TreeConfig.{name} must be finite, got {value!r}")
+
+    def _check_types(self) -> None:
+        """Every field against its annotation (:func:`agent.value_checks.check_value`): a
+        wrong type or a float that is not finite is a ``SettingError`` (a ``TypeError`` and a
+        ``ValueError``) naming the field, where no check of its own refused it (``alpha=True``,
+        ``hold_exploration="no"``, ``collision_key=None`` used to pass)."""
+        hints = type_hints(type(self))  # a subclass's own fields too
+        for field in dataclasses.fields(self):
+            check_value(
+                getattr(self, field.name),
+                hints[field.name],
+                f"TreeConfig.{field.name}",
+                python=True,
+            )
 
     def _check_novelty(self) -> None:
         cells = self.novelty_cells

@@ -35,6 +35,7 @@ from agent.scale import ReturnScale, ReturnSpread, RewardScale
 from agent.smdp import epoch_discounts, epoch_returns, greedy_among, leaf_update
 from agent.spaces import action_count, integer_inputs, observation_bounds
 from agent.tie_trial import TieTrial
+from agent.value_checks import check_seed
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -112,9 +113,7 @@ class SMDPAgent:
             )
         exploration.bind(self.n_actions)
         self.exploration = exploration
-        if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
-            raise TypeError(f"seed must be an int, got {seed!r}")
-        self.seed = int(seed)
+        self.seed = check_seed(seed)
         self.rng = np.random.default_rng(self.seed)
         self.uniform = UniformStream(self.rng)
         """Every draw of the exploration strategies, from :attr:`rng` in blocks."""

@@ -33,17 +33,14 @@ from __future__ import annotations
 
 import json
 import math
-import types
-import typing
 import zipfile
 import zlib
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, fields
-from functools import cache
 from os import PathLike
 from pathlib import Path
 from tokenize import TokenError
-from typing import Any, Literal, Union, get_args, get_origin, get_type_hints
+from typing import Any
 
 import numpy as np
 from gymnasium import spaces
@@ -52,6 +49,7 @@ from agent.config import TreeConfig
 from agent.exploration import Exploration, Tabu, make_exploration
 from agent.spaces import MAX_OBSERVATION_DIMS, UNBOUNDED_MAGNITUDE
 from agent.uniform_grid import MAX_GRID_CELLS
+from agent.value_checks import check_value, type_hints
 
 FORMAT = "bullet_maze.agent"
 VERSION = 2
@@ -73,12 +71,6 @@ OBSERVATION_DTYPES = (
 :mod:`agent.spaces`)."""
 MAX_ACTIONS = 4096
 """Most actions an agent file may declare."""
-
-MAX_INT = 2**31 - 1
-"""Largest integer a setting may hold unless :data:`SIZE_LIMITS` says less."""
-
-MAX_TEXT = 1000
-"""Longest string a setting may hold."""
 
 SIZE_LIMITS: dict[str, int] = {
     "split_min_samples": 1_000_000,
@@ -128,103 +120,12 @@ _OPTIONAL_METADATA_KEYS = {"policy_only", "learner", "tie_trial"}
 # --- settings -----------------------------------------------------------------------------
 
 
-def check_value(value: Any, hint: Any, where: str) -> None:
-    """Raise ``ValueError`` unless ``value`` is of type ``hint`` (strictly), finite and bounded.
-
-    ``hint`` is an annotation: ``float`` (an int or float, not a bool, finite), ``int`` (not a
-    bool, within :data:`MAX_INT`), ``bool``, ``str``, ``Literal[...]``, ``X | None``, lists and
-    tuples of those. An annotation it does not know only gets the finiteness check.
-    """
-    problem = _type_problem(value, hint)
-    if problem is not None:
-        shown = str(value).lower() if isinstance(value, bool) else repr(value)
-        raise ValueError(f"{where}: expected {problem}, got {shown}")
-    _check_finite(value, where)
-
-
-def _type_problem(value: Any, hint: Any) -> str | None:
-    """None if ``value`` fits ``hint``, else what was expected."""
-    origin = get_origin(hint)
-    if hint is Any:
-        return None
-    if origin in (Union, types.UnionType):
-        options = get_args(hint)
-        if any(_type_problem(value, option) is None for option in options):
-            return None
-        return " or ".join(_describe(option) for option in options)
-    if origin is Literal:
-        choices = get_args(hint)
-        ok = any(type(value) is type(choice) and value == choice for choice in choices)
-        return None if ok else _describe(hint)
-    if hint is type(None):
-        return None if value is None else "nothing (none)"
-    if hint is bool:
-        return None if isinstance(value, bool) else _describe(hint)
-    if hint is int:
-        ok = isinstance(value, int) and not isinstance(value, bool) and abs(value) <= MAX_INT
-        return None if ok else _describe(hint)
-    if hint is float:
-        ok = isinstance(value, int | float) and not isinstance(value, bool)
-        return None if ok else _describe(hint)
-    if hint is str:
-        return None if isinstance(value, str) and len(value) <= MAX_TEXT else _describe(hint)
-    if origin in (list, tuple, Sequence, typing.Sequence) or hint in (list, tuple):
-        if not isinstance(value, list | tuple) or isinstance(value, str):
-            return _describe(hint)
-        args = [a for a in get_args(hint) if a is not Ellipsis]
-        if args and any(_type_problem(item, args[0]) is not None for item in value):
-            return _describe(hint)
-        return None
-    return None
-
-
-def _describe(hint: Any) -> str:
-    origin = get_origin(hint)
-    if origin is Literal:
-        return "one of " + ", ".join(repr(c) for c in get_args(hint))
-    if origin in (Union, types.UnionType):
-        return " or ".join(_describe(option) for option in get_args(hint))
-    names = {
-        bool: "true or false",
-        int: f"an integer (at most {MAX_INT} in size)",
-        float: "a number",
-        str: f"a string (at most {MAX_TEXT} characters)",
-        type(None): "nothing (none)",
-    }
-    if hint in names:
-        return names[hint]
-    if origin in (list, tuple, Sequence, typing.Sequence):
-        args = [a for a in get_args(hint) if a is not Ellipsis]
-        return f"a list of {_describe(args[0])}" if args else "a list"
-    return getattr(hint, "__name__", str(hint))
-
-
-def _check_finite(value: Any, where: str) -> None:
-    if isinstance(value, float) and not math.isfinite(value):
-        raise ValueError(f"{where}: must be finite, got {value!r}")
-    if isinstance(value, list | tuple):
-        for item in value:
-            _check_finite(item, where)
-    if isinstance(value, Mapping):
-        for item in value.values():
-            _check_finite(item, where)
-
-
-@cache
-def _hints(target: Any) -> dict[str, Any]:
-    """A class's or function's resolved annotations ({} if they cannot be resolved)."""
-    try:
-        return get_type_hints(target)
-    except (NameError, TypeError):
-        return {}
-
-
 def config_from_data(data: Any, where: str) -> TreeConfig:
     """A ``TreeConfig`` from plain data, strictly: only its fields, each of its annotated type,
     finite and within :data:`SIZE_LIMITS`; ``where`` names the source in every error."""
     if not isinstance(data, Mapping):
         raise ValueError(f"{where}: expected a table of TreeConfig fields, got {data!r}")
-    hints = _hints(TreeConfig)
+    hints = type_hints(TreeConfig)
     known = [f.name for f in fields(TreeConfig)]
     for key, value in data.items():
         if key not in known:
@@ -270,7 +171,7 @@ def _strategy_classes(strategy: Exploration) -> list[type]:
 
 def _parameter_hint(classes: list[type], key: str) -> Any:
     for cls in classes:
-        hints = _hints(cls.__init__)  # type: ignore[misc]
+        hints = type_hints(cls.__init__)  # type: ignore[misc]
         if key in hints:
             return hints[key]
     return None  # unknown keys are refused by make_exploration itself

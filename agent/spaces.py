@@ -71,10 +71,17 @@ def observation_bounds(
                 low = np.where(low + 0.5 <= limits.min, -np.inf, low)
                 high = np.where(high - 0.5 >= limits.max, np.inf, high)
     else:
+        if isinstance(bounds, str | bytes) or not isinstance(bounds, Sequence | np.ndarray):
+            raise ValueError(f"bounds must be (low, high), got {bounds!r}")
         if len(bounds) != 2:
             raise ValueError(f"bounds must be (low, high), got {bounds!r}")
-        low = np.asarray(bounds[0], dtype=np.float64).reshape(-1)
-        high = np.asarray(bounds[1], dtype=np.float64).reshape(-1)
+        try:
+            low = np.asarray(bounds[0], dtype=np.float64).reshape(-1)
+            high = np.asarray(bounds[1], dtype=np.float64).reshape(-1)
+        except (TypeError, ValueError):
+            raise ValueError(
+                f"bounds must be (low, high), two sequences of numbers, got {bounds!r}"
+            ) from None
         source = "bounds"
         if low.shape != (dims,) or high.shape != (dims,):
             raise ValueError(

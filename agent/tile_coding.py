@@ -40,6 +40,7 @@ from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
 from agent.smdp import greedy_among
 from agent.spaces import action_count, observation_bounds, squash
+from agent.value_checks import check_arguments, check_seed
 
 logger = logging.getLogger(__name__)
 
@@ -150,8 +151,10 @@ class TileCodingAgent:
             ok = (rate > 0.0 if low_open else rate >= 0.0) and rate <= 1.0
             if not ok:
                 raise ValueError(f"TileCodingAgent: {label} must be in [0, 1], got {rate!r}")
-        if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
-            raise TypeError(f"seed must be an int, got {seed!r}")
+        check_seed(seed)
+        check_arguments(
+            TileCodingAgent.__init__, "TileCodingAgent", {"collision_key": collision_key}
+        )
         low, high = observation_bounds(observation_space, bounds, allow_unbounded=True)
         for d, (lo, hi) in enumerate(zip(low, high, strict=True)):
             if math.isfinite(lo) != math.isfinite(hi):

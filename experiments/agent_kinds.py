@@ -22,7 +22,7 @@ from gymnasium import spaces
 
 from agent import AdaptiveQAgent, TileCodingAgent
 from agent.presets import PRESETS, Preset
-from agent.serialization import check_value
+from agent.value_checks import check_value
 
 SMDP_AGENTS = ("tree", "grid")
 """Agents configured by ``TreeConfig`` fields and an exploration strategy."""

@@ -42,9 +42,10 @@ from gymnasium.error import DependencyNotInstalled
 
 import bullet_maze
 from agent.presets import preset as named_preset
-from agent.serialization import check_value, config_from_data, exploration_from_data
+from agent.serialization import config_from_data, exploration_from_data
 from agent.spaces import MAX_OBSERVATION_DIMS
 from agent.uniform_grid import MAX_GRID_CELLS
+from agent.value_checks import check_value
 from bullet_maze.params import MAX_EPISODE_STEPS, MODES
 from experiments.agent_kinds import (
     AGENT_KINDS,

@@ -20,6 +20,7 @@ from agent.exploration.base import (
     leaf_table_from_json,
     leaf_table_to_json,
 )
+from agent.value_checks import check_arguments
 
 Variant = Literal["literal", "cn_exponent"]
 
@@ -93,6 +94,11 @@ class AdaptiveEpsilon(Exploration):
         variant: Variant = "literal",
         inherit_on_split: bool = True,
     ) -> None:
+        check_arguments(
+            AdaptiveEpsilon.__init__,
+            self.name,
+            {"c_n": c_n, "c_h": c_h, "variant": variant, "inherit_on_split": inherit_on_split},
+        )
         if not c_n > 0.0:
             raise ValueError(f"adaptive: c_n must be > 0, got {c_n!r}")
         if not c_h >= 0.0:

@@ -14,6 +14,7 @@ import math
 from typing import Any
 
 from agent.exploration.base import Exploration, UniformSource, greedy_action
+from agent.value_checks import check_arguments
 
 
 def boltzmann_probabilities(q_row: list[float], temperature: float) -> list[float]:
@@ -51,6 +52,7 @@ class Boltzmann(Exploration):
     name = "boltzmann"
 
     def __init__(self, temperature: float = 1.0) -> None:
+        check_arguments(Boltzmann.__init__, self.name, {"temperature": temperature})
         if isinstance(temperature, bool) or not isinstance(temperature, int | float):
             raise TypeError(f"boltzmann: temperature must be a number, got {temperature!r}")
         if not (temperature > 0.0 and math.isfinite(temperature)):

@@ -24,6 +24,7 @@ from agent.exploration.base import (
     leaf_table_from_json,
     leaf_table_to_json,
 )
+from agent.value_checks import check_arguments
 
 
 def bonus_values(q_row: list[float], counts: list[int], beta: float) -> list[float]:
@@ -45,6 +46,9 @@ class CountBonus(Exploration):
     name = "count-bonus"
 
     def __init__(self, beta: float = 0.1, inherit_on_split: bool = True) -> None:
+        check_arguments(
+            CountBonus.__init__, self.name, {"beta": beta, "inherit_on_split": inherit_on_split}
+        )
         if isinstance(beta, bool) or not isinstance(beta, int | float):
             raise TypeError(f"count-bonus: beta must be a number, got {beta!r}")
         if not (beta >= 0.0 and math.isfinite(beta)):

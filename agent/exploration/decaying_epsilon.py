@@ -15,6 +15,7 @@ import math
 from typing import Any, Literal
 
 from agent.exploration.base import Exploration
+from agent.value_checks import check_arguments
 
 Schedule = Literal["exponential", "linear"]
 
@@ -43,6 +44,11 @@ class DecayingEpsilon(Exploration):
         schedule: Schedule = "exponential",
         horizon: int = 500,
     ) -> None:
+        check_arguments(
+            DecayingEpsilon.__init__,
+            self.name,
+            {"start": start, "end": end, "decay": decay, "schedule": schedule, "horizon": horizon},
+        )
         for label, value in (("start", start), ("end", end), ("decay", decay)):
             if isinstance(value, bool) or not isinstance(value, int | float):
                 raise TypeError(f"decaying-epsilon: {label} must be a number, got {value!r}")

@@ -6,6 +6,7 @@ import math
 from typing import Any
 
 from agent.exploration.base import Exploration
+from agent.value_checks import check_arguments
 
 
 class EpsilonGreedy(Exploration):
@@ -14,6 +15,7 @@ class EpsilonGreedy(Exploration):
     name = "epsilon-greedy"
 
     def __init__(self, epsilon: float = 0.015) -> None:
+        check_arguments(EpsilonGreedy.__init__, self.name, {"epsilon": epsilon})
         if not (0.0 <= epsilon <= 1.0) or math.isnan(epsilon):
             raise ValueError(f"{self.name}: epsilon must be in [0, 1], got {epsilon!r}")
         self._epsilon = float(epsilon)

@@ -14,6 +14,7 @@ import math
 from typing import Any
 
 from agent.exploration.epsilon_greedy import EpsilonGreedy
+from agent.value_checks import check_arguments
 
 
 class OptimisticInit(EpsilonGreedy):
@@ -22,6 +23,7 @@ class OptimisticInit(EpsilonGreedy):
     name = "optimistic"
 
     def __init__(self, r_max: float = 5.0, epsilon: float = 0.0) -> None:
+        check_arguments(OptimisticInit.__init__, self.name, {"r_max": r_max, "epsilon": epsilon})
         if isinstance(r_max, bool) or not isinstance(r_max, int | float):
             raise TypeError(f"optimistic: r_max must be a number, got {r_max!r}")
         if not math.isfinite(r_max):

@@ -26,6 +26,7 @@ from collections import deque
 from typing import Any, Literal
 
 from agent.exploration.base import Exploration, RewardUnit, UniformSource, greedy_action
+from agent.value_checks import check_arguments
 
 SplitPolicy = Literal["drop", "inherit"]
 AllListed = Literal["greedy", "random"]
@@ -53,6 +54,20 @@ class Tabu(Exploration):
         deviation_explores: bool = True,
         all_listed: AllListed = "random",
     ) -> None:
+        check_arguments(
+            Tabu.__init__,
+            "tabu",
+            {
+                "base": base,
+                "initial_capacity": initial_capacity,
+                "shrink_every": shrink_every,
+                "min_capacity": min_capacity,
+                "on_split": on_split,
+                "random_respects_list": random_respects_list,
+                "deviation_explores": deviation_explores,
+                "all_listed": all_listed,
+            },
+        )
         if not isinstance(base, Exploration):
             raise TypeError(f"tabu: base must be an Exploration, got {base!r}")
         for label, value, least in (

@@ -18,6 +18,7 @@ from agent.exploration.base import (
     leaf_table_from_json,
     leaf_table_to_json,
 )
+from agent.value_checks import check_arguments
 
 Form = Literal["boltzmann", "exponential"]
 
@@ -41,6 +42,11 @@ class VDBE(Exploration):
         form: Form = "boltzmann",
         inherit_on_split: bool = False,
     ) -> None:
+        check_arguments(
+            VDBE.__init__,
+            self.name,
+            {"sigma": sigma, "delta": delta, "form": form, "inherit_on_split": inherit_on_split},
+        )
         if not sigma > 0.0:
             raise ValueError(f"vdbe: sigma must be > 0, got {sigma!r}")
         if delta is not None and not 0.0 < delta <= 1.0:

@@ -17,6 +17,7 @@ from typing import Any
 from agent.exploration.base import UniformSource, greedy_action
 from agent.exploration.boltzmann import boltzmann_probabilities, sample
 from agent.exploration.vdbe import VDBE
+from agent.value_checks import check_arguments
 
 
 class VDBESoftmax(VDBE):
@@ -31,6 +32,16 @@ class VDBESoftmax(VDBE):
         delta: float | None = None,
         inherit_on_split: bool = False,
     ) -> None:
+        check_arguments(
+            VDBESoftmax.__init__,
+            self.name,
+            {
+                "sigma": sigma,
+                "temperature": temperature,
+                "delta": delta,
+                "inherit_on_split": inherit_on_split,
+            },
+        )
         if isinstance(temperature, bool) or not isinstance(temperature, int | float):
             raise TypeError(f"vdbe-softmax: temperature must be a number, got {temperature!r}")
         if not (temperature > 0.0 and math.isfinite(temperature)):
