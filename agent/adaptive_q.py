@@ -40,7 +40,7 @@ import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
-from agent.env_checks import CheckedEnv, observation_vector
+from agent.env_checks import CheckedEnv, deterministic_flag, observation_vector
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
 from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
@@ -239,7 +239,7 @@ class AdaptiveQAgent:
         reset_seed: int | None = None,
     ) -> list[EpisodeStats]:
         """Train for ``episodes`` episodes (as :meth:`agent.SMDPAgent.learn`)."""
-        check_learn_arguments(env, episodes, self.n_actions)
+        check_learn_arguments(env, episodes, self.n_actions, callback, reset_seed)
         checked = CheckedEnv(env, len(self.bounds[0]))
         return run_episodes(checked, episodes, self._run_episode, callback, reset_seed)
 
@@ -299,7 +299,7 @@ class AdaptiveQAgent:
         ``deterministic=False``, which breaks ties at random)."""
         x = observation_vector(obs, len(self.bounds[0]), "predict")
         values, _ = self._values(self._squashed(x))
-        if deterministic:
+        if deterministic_flag(deterministic):
             return greedy_among(values)
         return self._greedy(values)
 

@@ -80,6 +80,17 @@ def checked_reward(reward: Any, where: str) -> float:
     return value
 
 
+def deterministic_flag(value: Any) -> bool:
+    """``predict``'s ``deterministic`` as a bool: True, False or a numpy bool; anything else
+    (``-1``, ``"no"``, ``None``, which would count as true or false by accident) is a
+    ValueError naming it."""
+    if value is True or value is False:
+        return value
+    if isinstance(value, np.bool_):
+        return bool(value)
+    raise ValueError(f"predict: deterministic must be True or False, got {value!r}")
+
+
 def _check_flag(value: Any, name: str, where: str) -> None:
     if isinstance(value, bool | np.bool_):
         return

@@ -36,15 +36,30 @@ Callback = Callable[[EpisodeStats], bool | None]
 """Called after each episode of ``learn``; returning ``False`` stops learning."""
 
 
-def check_learn_arguments(env: Any, episodes: object, n_actions: int) -> None:
-    """A ValueError naming the value unless ``episodes`` is an int >= 0 (not a bool) and
-    ``env`` has a discrete action space of the agent's ``n_actions`` actions."""
+def check_learn_arguments(
+    env: Any,
+    episodes: object,
+    n_actions: int,
+    callback: object = None,
+    reset_seed: object = None,
+) -> None:
+    """A ValueError naming the argument unless ``episodes`` is an int >= 0 (not a bool),
+    ``env`` has a discrete action space of the agent's ``n_actions`` actions, ``callback`` is
+    None or callable and ``reset_seed`` is None or an int >= 0 (Gymnasium's ``reset`` would
+    otherwise refuse it without naming it, or a callback of 5 fail after the first episode)."""
     if isinstance(episodes, bool) or not isinstance(episodes, int) or episodes < 0:
         raise ValueError(f"episodes must be an int >= 0, got {episodes!r}")
-    env_actions = getattr(env.action_space, "n", None)
+    if callback is not None and not callable(callback):
+        raise ValueError(f"callback must be None or callable, got {callback!r}")
+    if reset_seed is not None and (
+        isinstance(reset_seed, bool) or not isinstance(reset_seed, int) or reset_seed < 0
+    ):
+        raise ValueError(f"reset_seed must be None or an int >= 0, got {reset_seed!r}")
+    space = getattr(env, "action_space", None)
+    env_actions = getattr(space, "n", None)
     if env_actions is None or int(env_actions) != n_actions:
         raise ValueError(
-            f"env.action_space {env.action_space!r} does not match the agent's {n_actions} actions"
+            f"env.action_space {space!r} does not match the agent's {n_actions} actions"
         )
 
 

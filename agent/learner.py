@@ -20,7 +20,7 @@ from gymnasium import spaces
 
 from agent.ancestor_ties import PairedSums, ancestors_choice
 from agent.config import TreeConfig
-from agent.env_checks import CheckedEnv, observation_vector
+from agent.env_checks import CheckedEnv, deterministic_flag, observation_vector
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments
 from agent.exploration import Exploration, make_exploration
 from agent.inspection import LeafInfo, render_partition
@@ -208,7 +208,7 @@ class SMDPAgent:
         """
         if not isinstance(fast, bool):
             raise TypeError(f"fast must be a bool, got {fast!r}")
-        check_learn_arguments(env, episodes, self.n_actions)
+        check_learn_arguments(env, episodes, self.n_actions, callback, reset_seed)
         run_episode: Callable[[Any, Any], EpisodeStats] = self._run_episode
         if fast and episodes > 0 and _fast_runner is not None:
             run_episode = _fast_runner(self, env)
@@ -653,7 +653,7 @@ class SMDPAgent:
         x = observation_vector(obs, len(self.bounds[0]), "predict")
         leaf = self.partition.leaf_of(x)
         row = self.q[leaf]
-        if deterministic:
+        if deterministic_flag(deterministic):
             leaves_at = lambda p: [self.partition.leaf_of(p)]  # noqa: E731
             return self._greedy_choice(x, [self], [leaf], row, leaves_at, lambda ls: self.q[ls[0]])
         return self.exploration.select(leaf, row, self.uniform)

@@ -34,7 +34,7 @@ import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
-from agent.env_checks import CheckedEnv, observation_vector
+from agent.env_checks import CheckedEnv, deterministic_flag, observation_vector
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
 from agent.exploration.base import greedy_action
 from agent.random_stream import UniformStream
@@ -204,7 +204,7 @@ class TileCodingAgent:
         reset_seed: int | None = None,
     ) -> list[EpisodeStats]:
         """Train for ``episodes`` episodes (as :meth:`agent.SMDPAgent.learn`)."""
-        check_learn_arguments(env, episodes, self.n_actions)
+        check_learn_arguments(env, episodes, self.n_actions, callback, reset_seed)
         checked = CheckedEnv(env, len(self.bounds[0]))
         return run_episodes(checked, episodes, self._run_episode, callback, reset_seed)
 
@@ -270,7 +270,7 @@ class TileCodingAgent:
     def predict(self, obs: Any, deterministic: bool = True) -> int:
         """The greedy action (lowest index among ties); ``deterministic=False``: epsilon-greedy."""
         values = self.q_values(obs)
-        if deterministic:
+        if deterministic_flag(deterministic):
             return greedy_among(values)
         return self._choose(values)
 

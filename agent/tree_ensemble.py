@@ -36,7 +36,7 @@ from typing import Any
 from gymnasium import spaces
 
 from agent.config import TreeConfig
-from agent.env_checks import observation_vector
+from agent.env_checks import deterministic_flag, observation_vector
 from agent.episode_stats import EpisodeStats
 from agent.exploration import Exploration, Greedy
 from agent.exploration.base import greedy_action
@@ -198,7 +198,9 @@ class TreeEnsembleAgent(TreeAgent):
         x = observation_vector(obs, len(self.bounds[0]), "predict")
         leaves = self._leaves(x)
         row = self.mean_row(leaves)
-        if deterministic:  # smoothing moves by tree 0's leaf and reads every tree's row
+        if deterministic_flag(
+            deterministic
+        ):  # smoothing moves by tree 0's leaf and reads every tree's row
             return self._greedy_choice(x, self.members, leaves, row, self._leaves, self.mean_row)
         return self.exploration.select(leaves[0], row, self.uniform)
 

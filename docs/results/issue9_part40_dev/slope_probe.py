@@ -38,11 +38,11 @@ import gymnasium as gym
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "issue9_part39_dev"))
-from protocol import greedy_episodes  # noqa: E402  (part 39's folder)
+from protocol import greedy_episodes
 
-from agent import adapt_env, preset  # noqa: E402
-from agent.env_checks import observation_vector  # noqa: E402
-from agent.tree_ensemble import tree_agent_class  # noqa: E402
+from agent import adapt_env, preset
+from agent.env_checks import observation_vector
+from agent.tree_ensemble import tree_agent_class
 
 RULES = ("today", "all-0.1", "all-1", "ties-0.1", "all-1e9", "ties-1e9")
 

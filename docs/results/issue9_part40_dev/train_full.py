@@ -21,10 +21,10 @@ import gymnasium as gym
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "issue9_part39_dev"))
-from protocol import greedy_episodes  # noqa: E402  (part 39's folder)
+from protocol import greedy_episodes
 
-from agent import adapt_env, preset  # noqa: E402
-from agent.tree_ensemble import tree_agent_class  # noqa: E402
+from agent import adapt_env, preset
+from agent.tree_ensemble import tree_agent_class
 
 
 def main(argv: list[str]) -> None:
