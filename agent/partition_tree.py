@@ -201,6 +201,12 @@ class PartitionTree:
     def leaf_bounds(self, leaf: int) -> tuple[list[float], list[float]]:
         return list(self._low[leaf]), list(self._high[leaf])
 
+    @property
+    def cuts(self) -> list[tuple[int, float]]:
+        """Every node's (dimension, threshold) in node order; (-1, 0.0) for a leaf. Two trees
+        with equal cuts partition the inputs alike."""
+        return list(zip(self._dim, self._threshold, strict=True))
+
     def leaf_depth(self, leaf: int) -> int:
         return self._depth[leaf]
 

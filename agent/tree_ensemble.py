@@ -7,7 +7,8 @@ boundary is as far from the neighbouring leaf's value as one deep inside.
 ``TreeConfig(ensemble_trees=K)`` keeps K trees whose presplit points are offset as Sutton's
 tilings are (tree k moves the presplit point of dimension d from the midpoint by
 ``((2d + 1) k / K mod 1)`` of half the leaf's width, read in [-1/2, 1/2); an unbounded
-dimension keeps its split at 0), and acts on the mean of their rows,
+dimension keeps its split at 0, so over a box with no bounded dimension the trees would all be
+one tree, and the agent is refused), and acts on the mean of their rows,
 
     Q(s, a) = (1/K) sum_k Q-bar_k(leaf_k(s), a),
 
@@ -133,6 +134,16 @@ class TreeEnsembleAgent(TreeAgent):
         self.members: list[TreeAgent] = [self]
         self.members += [_Member(self, presplit_shifts(i, k, dims)) for i in range(1, k)]
         """Tree 0 (this agent) and the shifted trees."""
+        if k > 1 and not any(
+            member.partition.cuts != self.partition.cuts for member in self.members[1:]
+        ):
+            raise ValueError(
+                f"TreeConfig.ensemble_trees = {k}: every tree would be the same tree, K times the "
+                "cost for nothing. The trees differ only by where their presplit cuts the "
+                "observation's bounded dimensions, and here none is cut at a finite midpoint "
+                f"(bounds low={self.bounds[0]}, high={self.bounds[1]}). Give the agent finite "
+                "bounds=(low, high) or use ensemble_trees = 1"
+            )
         self.terminals_seen = 0
         """Terminal transitions seen (``TreeConfig.decision_from_terminal``)."""
         self.last_truncated = False

@@ -1017,3 +1017,19 @@ def test_recent_lambda_options_are_checked(changes: dict[str, Any], defect: str)
         TreeConfig(**changes)
     with pytest.raises(TypeError, match="model_lambda_lower_bound must be a bool, got 1"):
         TreeConfig(model_lambda=0.5, planning="sweep", model_lambda_lower_bound=1)  # type: ignore[arg-type]
+
+
+def test_offset_trees_that_would_all_be_the_same_tree_are_refused() -> None:
+    """The offsets move only presplit cuts of bounded dimensions. Over an unbounded box (MuJoCo's
+    InvertedPendulum) K trees used to be K identical copies: K times the cost, the same runs."""
+    config = dataclasses.replace(preset("general").config, ensemble_trees=4)
+    unbounded = spaces.Box(-np.inf, np.inf, (4,), np.float64)
+    with pytest.raises(ValueError, match=r"ensemble_trees = 4: every tree would be the same tree"):
+        TreeEnsembleAgent(unbounded, spaces.Discrete(2), "adaptive+tabu", 0, config)
+    bounded = (np.full(4, -1.0), np.full(4, 1.0))
+    agent = TreeEnsembleAgent(unbounded, spaces.Discrete(2), "adaptive+tabu", 0, config, bounded)
+    cuts = [member.partition.cuts for member in agent.members]
+    assert len({tuple(c) for c in cuts}) == 4
+    half = spaces.Box(np.array([-1.0, -np.inf]), np.array([1.0, np.inf]), dtype=np.float64)
+    mixed = TreeEnsembleAgent(half, spaces.Discrete(2), "adaptive+tabu", 0, config)
+    assert len({tuple(m.partition.cuts) for m in mixed.members}) == 4
