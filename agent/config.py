@@ -472,6 +472,14 @@ class TreeConfig:
     any tree's leaf change, so the composite cells are finer than any one tree's leaves.
     1: one tree (the paper). Needs ``presplit_each_dimension`` or ``initial_depth`` (else the
     trees start alike and stay alike)."""
+    ensemble_unbounded_offsets: bool = False
+    """With ``ensemble_trees`` > 1, also move each tree's presplit cut of an unbounded dimension
+    (beyond the paper). In the squashed coordinate ``y = x / (1 + |x|)`` (the tile coder's rule
+    for unbounded inputs, :func:`agent.spaces.squash`; it assumes inputs of order 1), whose
+    range (-1, 1) has half-width 1, tree k's cut moves from ``y = 0`` by its offset ``s`` for
+    that dimension, so it lies at ``x = s / (1 - |s|)``, in [-1, 1). Off: an unbounded
+    dimension keeps its cut at 0 in every tree, and a box with no bounded dimension is refused
+    (its trees would all be one tree)."""
     ensemble_decisions: str = "any"
     """With ``ensemble_trees`` > 1, where the agent decides (beyond the paper): ``"any"``, at
     any tree's leaf change (the composite cells); ``"first"``, only at tree 0's, so the agent
@@ -688,6 +696,11 @@ class TreeConfig:
                 f"TreeConfig.ensemble_trees = {self.ensemble_trees} needs a presplit "
                 "(presplit_each_dimension = True or initial_depth > 0): the offsets move the "
                 "presplit points, and unsplit trees would stay identical"
+            )
+        if self.ensemble_unbounded_offsets is True and self.ensemble_trees < 2:
+            raise ValueError(
+                "TreeConfig.ensemble_unbounded_offsets = True needs ensemble_trees >= 2, got "
+                f"{self.ensemble_trees!r}"
             )
         _check_choice("ensemble_decisions", self.ensemble_decisions, ("any", "first"))
         if self.ensemble_decisions != "any" and self.ensemble_trees < 2:

@@ -160,6 +160,7 @@ CONFIG_FIELDS: dict[str, tuple[Any, ...] | type | tuple[type, ...]] = {
     # these make the agent a TreeEnsembleAgent, whose class turns the loop off
     "ensemble_trees": int,
     "ensemble_decisions": ("any",),
+    "ensemble_unbounded_offsets": bool,
     "decision_steps": (int, type(None)),
     "hold_steps": (int, type(None)),
     "hold_crossings": (float, int, type(None)),

@@ -121,6 +121,8 @@ class PartitionTree:
                 low, high = self._low[leaf][d], self._high[leaf][d]
                 if math.isfinite(low) and math.isfinite(high):
                     point = self._presplit_point(d, low, high)
+                elif low < (point := self._unbounded_presplit_point(d)) < high:
+                    pass
                 elif low < 0.0 < high:
                     point = 0.0
                 else:
@@ -165,6 +167,11 @@ class PartitionTree:
         """Where the presplit cuts a bounded dimension: the midpoint (a shifted tree of
         :mod:`agent.tree_ensemble` moves it)."""
         return 0.5 * (low + high)
+
+    def _unbounded_presplit_point(self, dim: int) -> float:
+        """Where the presplit cuts an unbounded dimension, if inside the leaf: 0 (a shifted
+        tree moves it with ``TreeConfig.ensemble_unbounded_offsets``)."""
+        return 0.0
 
     @property
     def n_ids(self) -> int:

@@ -7,8 +7,9 @@ boundary is as far from the neighbouring leaf's value as one deep inside.
 ``TreeConfig(ensemble_trees=K)`` keeps K trees whose presplit points are offset as Sutton's
 tilings are (tree k moves the presplit point of dimension d from the midpoint by
 ``((2d + 1) k / K mod 1)`` of half the leaf's width, read in [-1/2, 1/2); an unbounded
-dimension keeps its split at 0, so over a box with no bounded dimension the trees would all be
-one tree, and the agent is refused), and acts on the mean of their rows,
+dimension keeps its split at 0 unless ``TreeConfig.ensemble_unbounded_offsets`` moves it in
+squashed coordinates; without it a box with no bounded dimension would give K copies of one
+tree, and the agent is refused), and acts on the mean of their rows,
 
     Q(s, a) = (1/K) sum_k Q-bar_k(leaf_k(s), a),
 
@@ -68,12 +69,22 @@ class ShiftedPartitionTree(PartitionTree):
         config: TreeConfig,
         shifts: list[float],
         integer: bool = False,
+        unbounded_offsets: bool = False,
     ) -> None:
         self.shifts = list(shifts)
+        self.unbounded_offsets = unbounded_offsets
+        """Whether unbounded dimensions' cuts move too (``TreeConfig.ensemble_unbounded_offsets``
+        of the ensemble: a member's own config has one tree)."""
         super().__init__(low, high, config, integer)
 
     def _presplit_point(self, dim: int, low: float, high: float) -> float:
         return 0.5 * (low + high) + self.shifts[dim] * 0.5 * (high - low)
+
+    def _unbounded_presplit_point(self, dim: int) -> float:
+        if not self.unbounded_offsets:
+            return 0.0
+        shift = self.shifts[dim]  # in half-widths of the squashed range (-1, 1): y = shift
+        return shift / (1.0 - abs(shift))  # the x whose squash x / (1 + |x|) is y
 
 
 class _Member(TreeAgent):
@@ -90,7 +101,12 @@ class _Member(TreeAgent):
             ensemble.action_space,
             Greedy(),
             ensemble.seed,
-            dataclasses.replace(ensemble.config, ensemble_trees=1, ensemble_decisions="any"),
+            dataclasses.replace(
+                ensemble.config,
+                ensemble_trees=1,
+                ensemble_decisions="any",
+                ensemble_unbounded_offsets=False,
+            ),
             (low, high),
         )
 
@@ -100,7 +116,14 @@ class _Member(TreeAgent):
         return self._ensemble.discount
 
     def _make_partition(self, low: list[float], high: list[float]) -> PartitionTree:
-        return ShiftedPartitionTree(low, high, self.config, self._shifts, self.integer_inputs)
+        return ShiftedPartitionTree(
+            low,
+            high,
+            self.config,
+            self._shifts,
+            self.integer_inputs,
+            self._ensemble.config.ensemble_unbounded_offsets,
+        )
 
 
 class TreeEnsembleAgent(TreeAgent):
@@ -142,7 +165,8 @@ class TreeEnsembleAgent(TreeAgent):
                 "cost for nothing. The trees differ only by where their presplit cuts the "
                 "observation's bounded dimensions, and here none is cut at a finite midpoint "
                 f"(bounds low={self.bounds[0]}, high={self.bounds[1]}). Give the agent finite "
-                "bounds=(low, high) or use ensemble_trees = 1"
+                "bounds=(low, high), set ensemble_unbounded_offsets = True (offsets in "
+                "squashed coordinates) or use ensemble_trees = 1"
             )
         self.terminals_seen = 0
         """Terminal transitions seen (``TreeConfig.decision_from_terminal``)."""

@@ -1033,3 +1033,45 @@ def test_offset_trees_that_would_all_be_the_same_tree_are_refused() -> None:
     half = spaces.Box(np.array([-1.0, -np.inf]), np.array([1.0, np.inf]), dtype=np.float64)
     mixed = TreeEnsembleAgent(half, spaces.Discrete(2), "adaptive+tabu", 0, config)
     assert len({tuple(m.partition.cuts) for m in mixed.members}) == 4
+
+
+def test_unbounded_offsets_move_each_trees_cut_in_squashed_coordinates() -> None:
+    """``ensemble_unbounded_offsets``: tree k's cut of an unbounded dimension lies where the
+    squash ``x / (1 + |x|)`` equals its offset s, at ``x = s / (1 - |s|)``. With K = 4 and four
+    dimensions the offsets ((2d + 1) k / 4 mod 1, read in [-1/2, 1/2)) are, by hand: tree 1
+    1/4, -1/4, 1/4, -1/4; tree 2 -1/2 in every dimension; tree 3 -1/4, 1/4, -1/4, 1/4."""
+    config = dataclasses.replace(
+        preset("general").config, ensemble_trees=4, ensemble_unbounded_offsets=True
+    )
+    unbounded = spaces.Box(-np.inf, np.inf, (4,), np.float64)
+    agent = TreeEnsembleAgent(unbounded, spaces.Discrete(2), "adaptive+tabu", 0, config)
+    third = 1.0 / 3.0
+    expected = [
+        [0.0, 0.0, 0.0, 0.0],
+        [third, -third, third, -third],
+        [-1.0, -1.0, -1.0, -1.0],
+        [-third, third, -third, third],
+    ]
+    for member, cuts in zip(agent.members, expected, strict=True):
+        first = {}
+        for dim, threshold in member.partition.cuts:
+            first.setdefault(dim, threshold)
+        assert [first[d] for d in range(4)] == pytest.approx(cuts)
+        x = [c + 1e-9 for c in cuts]  # just above every cut: the root's right side each time
+        leaf = member.partition.leaf_of(x)
+        low, _ = member.partition.leaf_bounds(leaf)
+        assert low == pytest.approx(cuts)
+
+
+def test_unbounded_offsets_need_several_trees_and_leave_bounded_boxes_alone() -> None:
+    with pytest.raises(ValueError, match="ensemble_unbounded_offsets = True needs ensemble_trees"):
+        TreeConfig(ensemble_unbounded_offsets=True)
+    base = dataclasses.replace(preset("general").config, ensemble_trees=4)
+    moved = dataclasses.replace(base, ensemble_unbounded_offsets=True)
+    box = spaces.Box(-1.0, 1.0, (3,), np.float64)
+    plain = TreeEnsembleAgent(box, spaces.Discrete(2), "adaptive+tabu", 0, base)
+    offset = TreeEnsembleAgent(box, spaces.Discrete(2), "adaptive+tabu", 0, moved)
+    assert [m.partition.cuts for m in plain.members] == [m.partition.cuts for m in offset.members]
+    unbounded = spaces.Box(-np.inf, np.inf, (2,), np.float64)
+    with pytest.raises(ValueError, match="set ensemble_unbounded_offsets = True"):
+        TreeEnsembleAgent(unbounded, spaces.Discrete(2), "adaptive+tabu", 0, base)
