@@ -27,7 +27,6 @@ One JSON line per (seed, rule): the mean greedy return and each episode's length
 
 from __future__ import annotations
 
-import json
 import sys
 import warnings
 from collections.abc import Callable
@@ -38,7 +37,8 @@ import gymnasium as gym
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "issue9_part39_dev"))
-from protocol import greedy_episodes
+from protocol import greedy_episodes  # (part 39's folder)
+from train_full import append_scored  # this folder
 
 from agent import adapt_env, preset
 from agent.env_checks import observation_vector
@@ -75,8 +75,9 @@ def line_fits(agent: Any, leaf: int, ridge: float) -> list[Callable[[list[float]
         w = np.linalg.solve(u.T @ u + ridge * m * np.eye(len(dims)), u.T @ (y - y.mean()))
         mean = float(y.mean())
         fits.append(
-            lambda x, mean=mean, w=w, dims=dims, centre=centre, width=width: mean
-            + float(w @ ((np.asarray(x)[dims] - centre) / width))
+            lambda x, mean=mean, w=w, dims=dims, centre=centre, width=width: (
+                mean + float(w @ ((np.asarray(x)[dims] - centre) / width))
+            )
         )
     return fits
 
@@ -121,11 +122,7 @@ def main(argv: list[str]) -> None:
         for name in RULES:
             agent = tree_agent_class(config).load(agent_dir / f"{task}-{seed}.npz")
             returns, lengths = greedy_episodes(env, rule(agent, name), seed)
-            row = {"task": task, "seed": seed, "rule": name}
-            row["mean"] = round(float(np.mean(returns)), 2)
-            row["lengths"] = lengths
-            with out.open("a") as f:
-                f.write(json.dumps(row) + "\n")
+            append_scored(out, {"task": task, "seed": seed, "rule": name}, returns, lengths)
 
 
 if __name__ == "__main__":

@@ -16,6 +16,7 @@ import sys
 import time
 import warnings
 from pathlib import Path
+from typing import Any
 
 import gymnasium as gym
 import numpy as np
@@ -25,6 +26,14 @@ from protocol import greedy_episodes
 
 from agent import adapt_env, preset
 from agent.tree_ensemble import tree_agent_class
+
+
+def append_scored(out: Path, row: dict[str, Any], returns: list[float], lengths: list[int]) -> None:
+    """Add the mean greedy return and each episode's length to ``row``; append it to ``out``."""
+    row["mean"] = round(float(np.mean(returns)), 2)
+    row["lengths"] = lengths
+    with out.open("a") as f:
+        f.write(json.dumps(row) + "\n")
 
 
 def main(argv: list[str]) -> None:
@@ -44,10 +53,7 @@ def main(argv: list[str]) -> None:
         agent.save(agent_dir / f"{task}-{seed}.npz")
         returns, lengths = greedy_episodes(env, agent.predict, seed)
         row = {"task": task, "seed": seed, "cpu": cpu, "leaves": agent.n_leaves}
-        row["mean"] = round(float(np.mean(returns)), 2)
-        row["lengths"] = lengths
-        with out.open("a") as f:
-            f.write(json.dumps(row) + "\n")
+        append_scored(out, row, returns, lengths)
 
 
 if __name__ == "__main__":
