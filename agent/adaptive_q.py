@@ -240,7 +240,7 @@ class AdaptiveQAgent:
     ) -> list[EpisodeStats]:
         """Train for ``episodes`` episodes (as :meth:`agent.SMDPAgent.learn`)."""
         check_learn_arguments(env, episodes, self.n_actions, callback, reset_seed)
-        checked = CheckedEnv(env, len(self.bounds[0]))
+        checked = CheckedEnv(env, len(self.bounds[0]), self.bounds)
         return run_episodes(checked, episodes, self._run_episode, callback, reset_seed)
 
     def update(self, x: list[float], action: int, reward: float, next_value: float) -> None:

@@ -14,14 +14,31 @@ each value is checked where it enters:
 Every defect is a ValueError naming the value, the call it came from (``env.step`` at step 12 of
 the ``learn`` call's episode 3, or ``predict``) and what was expected. Gymnasium's own
 ``PassiveEnvChecker`` looks at the first ``reset`` and ``step`` only, and only warns.
+
+An observation outside the bounds the agent was built for (its observation space's, or the
+``bounds`` it was given) is not refused: envs whose declared box is a little narrower than what
+they emit are common, and the agents still act there (the tree files such a point in its edge
+leaves). It is not silent either: the first one in a ``learn`` call raises a
+:class:`ObservationOutOfBounds` warning naming the input, its value, the bounds, the step and the
+episode.
 """
 
 from __future__ import annotations
 
 import math
+import os
+import sys
+import warnings
+from collections.abc import Sequence
+from types import FrameType
 from typing import Any
 
 import numpy as np
+
+
+class ObservationOutOfBounds(UserWarning):
+    """An env handed ``learn`` an observation outside the agent's bounds (module docstring)."""
+
 
 MAX_REWARD_MAGNITUDE = 1e100
 """The largest reward magnitude an agent takes: the learners square rewards (variances, the
@@ -103,11 +120,16 @@ class CheckedEnv:
     """``env`` for ``learn``, with every ``reset`` and ``step`` result checked (module
     docstring) and passed on unchanged; any other attribute is ``env``'s own."""
 
-    def __init__(self, env: Any, n_inputs: int) -> None:
+    def __init__(
+        self, env: Any, n_inputs: int, bounds: tuple[list[float], list[float]] | None = None
+    ) -> None:
         self.env = env
         self.n_inputs = n_inputs
         self.episode = -1
         self.steps = 0
+        self.bounds = bounds
+        """The box the agent was built for; None once an observation outside it was warned of
+        (once per ``learn`` call), or when not given."""
 
     def __getattr__(self, name: str) -> Any:
         if name == "env":  # not set yet (a copy being built): no recursion
@@ -121,7 +143,9 @@ class CheckedEnv:
         result = self.env.reset(**kwargs)
         where = f"env.reset (the learn call's episode {self.episode})"
         _check_shape(result, "(obs, info)", where)
-        observation_vector(result[0], self.n_inputs, where)
+        values = observation_vector(result[0], self.n_inputs, where)
+        if self.bounds is not None:
+            self._check_bounds(values, where)
         return result
 
     def step(self, action: Any) -> Any:
@@ -129,45 +153,94 @@ class CheckedEnv:
         ``terminated`` and ``truncated``, a dict ``info``."""
         self.steps += 1
         result = self.env.step(action)
-        if type(result) is tuple and len(result) == 5 and _plain_step(*result, self.n_inputs):
-            return result
-        where = f"env.step (step {self.steps} of the learn call's episode {self.episode})"
+        if type(result) is tuple and len(result) == 5:
+            values = _plain_step(*result, self.n_inputs)
+            if values is not None:
+                bounds = self.bounds
+                if bounds is not None:
+                    for v, lo, hi in zip(values, bounds[0], bounds[1], strict=True):  # per step
+                        if not lo <= v <= hi:
+                            self._check_bounds(values, None)
+                            break
+                return result
+        where = self._step_where()
         _check_shape(result, "(obs, reward, terminated, truncated, info)", where)
         obs, reward, terminated, truncated, info = result
-        observation_vector(obs, self.n_inputs, where)
+        values = observation_vector(obs, self.n_inputs, where)
         checked_reward(reward, where)
         _check_flag(terminated, "terminated", where)
         _check_flag(truncated, "truncated", where)
         if not isinstance(info, dict):
             raise ValueError(f"{where}: info {info!r} ({type(info).__name__}) is not a dict")
+        if self.bounds is not None:
+            self._check_bounds(values, where)
         return result
+
+    def _step_where(self) -> str:
+        return f"env.step (step {self.steps} of the learn call's episode {self.episode})"
+
+    def _check_bounds(self, values: Sequence[float], where: str | None) -> None:
+        """Warn (once) if ``values`` leave :attr:`bounds`; then stop looking. ``where`` None:
+        this step's (written only when it is needed)."""
+        assert self.bounds is not None
+        low, high = self.bounds
+        for i, (v, lo, hi) in enumerate(zip(values, low, high, strict=True)):  # (first: named)
+            if not lo <= v <= hi:
+                self.bounds = None
+                if where is None:
+                    where = self._step_where()
+                warnings.warn(
+                    f"{where}: observation input {i} = {v!r} lies outside the bounds the agent "
+                    f"was built for, [{lo!r}, {hi!r}] (its observation space's, or the bounds "
+                    "it was given); the agent acts on it, but its partition or tiling was laid "
+                    "out for that box. Declare the range the env's observations take (or give "
+                    "the agent bounds=(low, high)). Warned once per learn call.",
+                    ObservationOutOfBounds,
+                    stacklevel=_caller_level(),
+                )
+                return
+
+
+def _caller_level() -> int:
+    """The ``stacklevel`` that points a warning at the first frame outside this package (the
+    user's ``learn`` call), however deep the agent's loop called it from."""
+    package = os.path.dirname(os.path.abspath(__file__))
+    frame: FrameType | None = sys._getframe(1)
+    level = 1
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(package):
+        frame = frame.f_back
+        level += 1
+    return level
 
 
 def _plain_step(
     obs: Any, reward: Any, terminated: Any, truncated: Any, info: Any, n_inputs: int
-) -> bool:
-    """Whether a step's values are of the common valid kinds (a numeric ndarray, or a flat list
-    or tuple of Python or numpy floats and ints, of the right size, finite; such a reward
-    within bounds; bools; a dict): ``step``'s quick path, about a microsecond. False means
-    "check closely", not "invalid"."""
+) -> Sequence[float] | None:
+    """The observation's values if a step's values are of the common valid kinds (a numeric
+    ndarray, or a flat list or tuple of Python or numpy floats and ints, of the right size,
+    finite; such a reward within bounds; bools; a dict): ``step``'s quick path, about a
+    microsecond. None means "check closely", not "invalid"."""
     if type(terminated) is not bool or type(truncated) is not bool or type(info) is not dict:
-        return False
+        return None
     if type(reward) not in _PLAIN_REWARDS:
-        return False
+        return None
     if not -MAX_REWARD_MAGNITUDE <= reward <= MAX_REWARD_MAGNITUDE:  # NaN fails too
-        return False
+        return None
     if type(obs) is np.ndarray:
         if obs.size != n_inputs:
-            return False
+            return None
         kind = obs.dtype.kind
-        if kind == "f":
-            return all(map(math.isfinite, obs.ravel().tolist()))
-        return kind in "iub"  # integers and bools are finite
+        if kind not in "fiub":
+            return None
+        values = obs.ravel().tolist()
+        if kind == "f" and not all(map(math.isfinite, values)):
+            return None
+        return values  # (integers and bools are finite)
     if type(obs) is list or type(obs) is tuple:
         if len(obs) != n_inputs or not all(type(v) in _PLAIN_REWARDS for v in obs):
-            return False
-        return all(map(math.isfinite, obs))
-    return False
+            return None
+        return obs if all(map(math.isfinite, obs)) else None
+    return None
 
 
 _PLAIN_REWARDS = (float, int, np.float64, np.float32)

@@ -213,7 +213,7 @@ class SMDPAgent:
         if fast and episodes > 0 and _fast_runner is not None:
             run_episode = _fast_runner(self, env)
         if run_episode == self._run_episode:  # a user's env: check what it hands the agent
-            env = CheckedEnv(env, len(self.bounds[0]))
+            env = CheckedEnv(env, len(self.bounds[0]), self.bounds)
         # the fast loop writes its state into the agent only when asked (before a callback
         # can look, and at the end)
         sync: Callable[[], None] | None = getattr(run_episode, "sync", None)

@@ -205,7 +205,7 @@ class TileCodingAgent:
     ) -> list[EpisodeStats]:
         """Train for ``episodes`` episodes (as :meth:`agent.SMDPAgent.learn`)."""
         check_learn_arguments(env, episodes, self.n_actions, callback, reset_seed)
-        checked = CheckedEnv(env, len(self.bounds[0]))
+        checked = CheckedEnv(env, len(self.bounds[0]), self.bounds)
         return run_episodes(checked, episodes, self._run_episode, callback, reset_seed)
 
     def _run_episode(self, env: Any, obs: Any) -> EpisodeStats:

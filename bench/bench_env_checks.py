@@ -42,7 +42,7 @@ beside an env that costs almost nothing, the paper's tree capped at 500 leaves."
 MODULES = (agent.learner, agent.tile_coding, agent.adaptive_q)
 
 
-def _unchecked(env: Any, n_inputs: int) -> Any:
+def _unchecked(env: Any, n_inputs: int, bounds: Any = None) -> Any:
     return env
 
 

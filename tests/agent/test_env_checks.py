@@ -4,6 +4,8 @@ from. A valid env's values pass through unchanged. The hostile cases are kept as
 
 from __future__ import annotations
 
+import re
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -13,7 +15,13 @@ import pytest
 from gymnasium import spaces
 
 from agent import AdaptiveQAgent, TileCodingAgent, preset
-from agent.env_checks import MAX_REWARD_MAGNITUDE, CheckedEnv, checked_reward, observation_vector
+from agent.env_checks import (
+    MAX_REWARD_MAGNITUDE,
+    CheckedEnv,
+    ObservationOutOfBounds,
+    checked_reward,
+    observation_vector,
+)
 
 BOX = spaces.Box(-1.0, 1.0, (2,), np.float32)
 ZERO = np.zeros(2, np.float32)
@@ -158,7 +166,7 @@ def test_checks_do_not_change_a_valid_run(monkeypatch: pytest.MonkeyPatch) -> No
     runs = []
     for wrap in (True, False):
         if not wrap:
-            monkeypatch.setattr(agent.learner, "CheckedEnv", lambda env, n_inputs: env)
+            monkeypatch.setattr(agent.learner, "CheckedEnv", lambda env, n_inputs, bounds: env)
         learner = preset("general").agent(env.observation_space, env.action_space, 3)
         history = learner.learn(env, 3, reset_seed=3)
         runs.append(([h.steps for h in history], [h.episode_return for h in history], learner.q))
@@ -224,3 +232,60 @@ def test_a_checked_env_copies_without_recursion() -> None:
     assert twin.env is checked.env
     assert twin.step(0)[1] == -1.0
     assert copy.deepcopy(checked).n_inputs == 2
+
+
+class Sloppy(gym.Env):
+    """Declares a box of [-1, 1] and walks out of it: 0.3 or 0.15 a step, whatever the action."""
+
+    observation_space = BOX
+    action_space = spaces.Discrete(2)
+
+    def reset(self, seed: int | None = None, options: dict | None = None) -> tuple:
+        super().reset(seed=seed)
+        self.x, self.t = np.zeros(2), 0
+        return self.x.astype(np.float32), {}
+
+    def step(self, action: int) -> tuple:
+        self.t += 1
+        self.x = self.x - (0.3 if action else 0.15)
+        return self.x.astype(np.float32), -1.0, bool(abs(self.x[0]) > 5), self.t >= 30, {}
+
+
+def _agents_for(env: gym.Env) -> list[Any]:
+    space, actions = env.observation_space, env.action_space
+    return [
+        preset("general").agent(space, actions, 0),
+        preset("paper").agent(space, actions, 0),
+        TileCodingAgent(space, actions, 0),
+        AdaptiveQAgent(space, actions, 0),
+    ]
+
+
+def test_an_observation_outside_the_bounds_is_warned_of_once_per_learn_call() -> None:
+    """Not refused (envs that overstep their declared box a little are common, and the agents
+    still act there), not silent: one warning naming the input, the value, the bounds, the step
+    and the episode, pointed at the caller's line."""
+    env = Sloppy()
+    for learner in _agents_for(env):
+        with pytest.warns(ObservationOutOfBounds) as caught:
+            learner.learn(env, 3, reset_seed=0)
+        assert len(caught) == 1
+        message = str(caught[0].message)
+        assert re.match(
+            r"env\.step \(step \d+ of the learn call's episode \d\): observation "
+            r"input 0 = -1\.\d+ lies outside the bounds the agent was built for, "
+            r"\[-1\.0, 1\.0\]",
+            message,
+        ), message
+        assert caught[0].filename == __file__
+        with pytest.warns(ObservationOutOfBounds):  # once per call, so again in the next
+            learner.learn(env, 1)
+
+
+def test_observations_inside_the_bounds_raise_no_warning() -> None:
+    env = gym.make("MountainCar-v0")
+    for learner in _agents_for(env):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", ObservationOutOfBounds)
+            learner.learn(env, 2, reset_seed=0)
+    env.close()
