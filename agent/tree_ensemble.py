@@ -49,6 +49,18 @@ from agent.smdp import epoch_returns
 from agent.tree_agent import TreeAgent
 
 
+def save_refusal(config: TreeConfig) -> str | None:
+    """Why an agent of ``config`` cannot be saved, or None when it can: a tree ensemble of
+    several trees has no file format yet. The harness asks before it trains an agent it must
+    save (``run.py train``, ``[experiment] save_agents``)."""
+    if config.ensemble_trees > 1:
+        return (
+            f"a tree ensemble (TreeConfig.ensemble_trees = {config.ensemble_trees}) has no file "
+            "format yet"
+        )
+    return None
+
+
 def presplit_shifts(tree: int, trees: int, dims: int) -> list[float]:
     """Tree ``tree``'s presplit offsets, one per dimension, in half-widths of the leaf:
     ``(2d + 1) tree / trees mod 1``, read in [-1/2, 1/2) (Sutton's asymmetric offsets)."""
@@ -247,12 +259,10 @@ class TreeEnsembleAgent(TreeAgent):
     def save(self, path: str | PathLike[str], policy_only: bool = False) -> Path:
         """:meth:`SMDPAgent.save` for one tree (``decision_steps`` alone); an ensemble of
         several trees has no file format yet (a ValueError)."""
-        if len(self.members) == 1:
+        refusal = save_refusal(self.config)
+        if refusal is None:
             return super().save(path, policy_only)
-        raise ValueError(
-            f"cannot save {path}: a tree ensemble (TreeConfig.ensemble_trees = "
-            f"{self.config.ensemble_trees}) has no file format yet"
-        )
+        raise ValueError(f"cannot save {path}: {refusal}")
 
     @property
     def terminals_fail(self) -> bool:

@@ -44,6 +44,7 @@ import bullet_maze
 from agent.presets import preset as named_preset
 from agent.serialization import config_from_data, exploration_from_data
 from agent.spaces import MAX_OBSERVATION_DIMS
+from agent.tree_ensemble import save_refusal
 from agent.uniform_grid import MAX_GRID_CELLS
 from agent.value_checks import check_value
 from bullet_maze.params import MAX_EPISODE_STEPS, MODES
@@ -529,7 +530,7 @@ def parse_config(
         raise reader.fail("experiment", "description", f"longer than {MAX_TEXT} characters")
     runs = reader.bounded(meta, "experiment", "runs", 30, 1, MAX_RUNS)
     check_planned_runs(runs, max(1, len(tasks)), len(strategies), f"{source}: [experiment] runs")
-    return ExperimentConfig(
+    config = ExperimentConfig(
         name=reader.name(meta, "experiment", "name"),
         strategies=strategies,
         seed=reader.bounded(meta, "experiment", "seed", 0, 0, MAX_SEED),
@@ -552,6 +553,23 @@ def parse_config(
         description=description,
         source=source,
     )
+    if config.save_agents:
+        for spec in strategies:
+            refusal = save_refusal_of(config, spec)
+            if refusal is not None:
+                raise ConfigError(
+                    f"{source}: [experiment] save_agents = true, but strategy {spec.name!r} "
+                    f"cannot be saved: {refusal}"
+                )
+    return config
+
+
+def save_refusal_of(config: ExperimentConfig, spec: StrategySpec) -> str | None:
+    """Why strategy ``spec``'s trained agent cannot be saved (None when it can): checked before
+    any run trains an agent that must be saved (``save_agents``, ``run.py train``)."""
+    if is_fixed(spec.agent):
+        return None
+    return save_refusal(config_from_data(config.agent_params(spec), f"strategy {spec.name!r}"))
 
 
 def check_splits(items: Sequence[str], where: str) -> tuple[str, ...]:

@@ -173,6 +173,13 @@ class TrainJob:
             merged_fields = {**file_config.agent_params(spec), **fields}
             _checked(lambda: config_from_data(merged_fields, "option --agent-param"))
             spec = dataclasses.replace(spec, config={**spec.config, **fields})
+        refusal = _checked(lambda: config_module.save_refusal_of(file_config, spec))
+        if refusal is not None:
+            raise ConfigError(
+                f"{file_config.source}: [strategy {spec.name!r}]: run.py train saves the agent, "
+                f"and {refusal}; run.py experiment trains it without saving it (unless its "
+                "file sets save_agents)"
+            )
         budget = file_config.time_budget_s
         if time_budget_s is not None:
             budget = time_budget_s or None

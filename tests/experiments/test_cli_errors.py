@@ -382,3 +382,34 @@ def test_report_only_of_a_file_that_changes_runs_is_refused(tmp_path: Path, caps
 def test_report_only_writes_no_config_into_an_empty_folder(tmp_path: Path, capsys):
     _fails(["experiment", "quick", "--report-only", "--out", str(tmp_path)], capsys)
     assert not (tmp_path / "config.toml").exists()
+
+
+ENSEMBLE = "config = { ensemble_trees = 4, presplit_each_dimension = true }\n"
+
+
+def test_an_ensemble_that_must_be_saved_is_refused_before_any_run(tmp_path: Path, capsys):
+    """A tree ensemble has no file format. ``save_agents`` used to fail each run after its
+    training, and ``run.py train`` with a traceback after writing half its folder."""
+    text = SMALL_FILE.replace("[experiment]\n", "[experiment]\nsave_agents = true\n") + ENSEMBLE
+    out = tmp_path / "out"
+    error = _fails(["experiment", str(_write(tmp_path, "e.toml", text)), "--out", str(out)], capsys)
+    assert "e.toml: [experiment] save_agents = true, but strategy 'eps' cannot be saved" in error
+    assert "a tree ensemble (TreeConfig.ensemble_trees = 4) has no file format yet" in error
+    assert not out.exists()
+    trained = tmp_path / "trained"
+    argv = ["train", "--config", str(_write(tmp_path, "t.toml", SMALL_FILE + ENSEMBLE))]
+    error = _fails([*argv, "--out", str(trained)], capsys)
+    assert "[strategy 'eps']: run.py train saves the agent, and a tree ensemble" in error
+    assert not trained.exists()
+    option = ["--agent-param", "ensemble_trees=4", "--agent-param", "presplit_each_dimension=true"]
+    plain = _write(tmp_path, "plain.toml", SMALL_FILE)
+    error = _fails(["train", "--config", str(plain), *option, "--out", str(trained)], capsys)
+    assert "run.py train saves the agent" in error
+    assert not trained.exists()
+
+
+def test_an_ensemble_runs_when_nothing_must_be_saved(tmp_path: Path, capsys):
+    out = tmp_path / "out"
+    config = _write(tmp_path, "e.toml", SMALL_FILE + ENSEMBLE)
+    run.main(["experiment", str(config), "--out", str(out), "--no-progress"])
+    assert list(out.glob("**/*.csv"))
