@@ -883,7 +883,19 @@ class SMDPAgent:
         return max(self.partition.leaf_depth(leaf) for leaf in self.partition.leaves())
 
     def leaf_info(self, leaf: int) -> LeafInfo:
-        """Bounds, depth, Q-bar values and visit counts of one leaf."""
+        """Bounds, depth, Q-bar values and visit counts of one leaf (a ValueError naming
+        ``leaf`` unless it is the id of a current leaf: an internal node's id, or -1, which
+        Python's indexing would read as the last node, is not one)."""
+        if (
+            isinstance(leaf, bool)
+            or not isinstance(leaf, int | np.integer)
+            or not self.partition.is_leaf(int(leaf))
+        ):
+            raise ValueError(
+                f"leaf_info: {leaf!r} is not the id of a current leaf (ids of the "
+                f"{self.partition.n_leaves} leaves: agent.partition.leaves())"
+            )
+        leaf = int(leaf)
         low, high = self.partition.leaf_bounds(leaf)
         return LeafInfo(
             leaf=leaf,
@@ -914,6 +926,9 @@ class SMDPAgent:
         """
         from agent import serialization
         from agent.exploration import exploration_spec
+
+        if not isinstance(policy_only, bool):
+            raise ValueError(f"save: policy_only must be True or False, got {policy_only!r}")
 
         partition_arrays, partition_meta = self.partition.to_arrays()
         if policy_only:

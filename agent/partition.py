@@ -38,6 +38,10 @@ class Partition(Protocol):
         """Ids of the current leaves."""
         ...
 
+    def is_leaf(self, node: int) -> bool:
+        """Whether ``node`` (an int) is the id of a current leaf."""
+        ...
+
     def leaf_bounds(self, leaf: int) -> tuple[list[float], list[float]]:
         """Lower and upper corner of a leaf's box."""
         ...

@@ -194,6 +194,9 @@ class PartitionTree:
     def leaves(self) -> list[int]:
         return [node for node, d in enumerate(self._dim) if d < 0]
 
+    def is_leaf(self, node: int) -> bool:
+        return 0 <= node < len(self._dim) and self._dim[node] < 0
+
     def parent(self, node: int) -> int:
         """Id of the node that split into ``node`` (-1 for the root)."""
         return self._parent[node]

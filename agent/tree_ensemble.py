@@ -226,6 +226,8 @@ class TreeEnsembleAgent(TreeAgent):
         fast: bool = True,
     ) -> list[EpisodeStats]:
         """:meth:`SMDPAgent.learn` on the ensemble's loop (never the compiled one)."""
+        if not isinstance(fast, bool):
+            raise TypeError(f"fast must be a bool, got {fast!r}")
         return super().learn(env, episodes, callback, reset_seed, fast=False)
 
     def mean_row(self, leaves: list[int]) -> list[float]:

@@ -76,6 +76,9 @@ class UniformGrid:
     def leaves(self) -> list[int]:
         return list(range(self.n_leaves))
 
+    def is_leaf(self, node: int) -> bool:
+        return 0 <= node < self.n_leaves
+
     def leaf_bounds(self, leaf: int) -> tuple[list[float], list[float]]:
         idx = self.cell_index(leaf)
         low = [lo + c / s for lo, c, s in zip(self.root_low, idx, self._scale, strict=True)]

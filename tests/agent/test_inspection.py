@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from gymnasium import spaces
 
 from agent import GridAgent, TreeAgent
@@ -43,3 +44,29 @@ def test_grid_inspection() -> None:
     assert agent.leaf_info(4).high == (4.0, 1.0)
     assert agent.leaf_of([-5.0, 9.0]) == 3  # outside the box: the nearest edge cell
     assert agent.render().startswith("uniform grid 2 x 4")
+
+
+@pytest.mark.parametrize("node", [-1, 0, 2, 5, 10**6, True, "1", 1.0, None])
+def test_leaf_info_refuses_what_is_not_a_current_leaf(node: object) -> None:
+    """-1 used to give the last node's box (Python's indexing), an internal node's id that
+    node's box, as if they were leaves."""
+    agent = TreeAgent(BOX, spaces.Discrete(3), "greedy")
+    _, right = agent.split_leaf(0, 0, 1.0)
+    agent.split_leaf(right, 1, 3.0)  # nodes: 0 and 2 internal; leaves 1, 3, 4
+    with pytest.raises(ValueError, match=r"leaf_info: .* is not the id of a current leaf"):
+        agent.leaf_info(node)  # type: ignore[arg-type]
+    assert agent.leaf_info(np.int64(3)).leaf == 3
+
+
+@pytest.mark.parametrize("cell", [-1, 8, True])
+def test_grid_leaf_info_refuses_ids_outside_the_grid(cell: object) -> None:
+    agent = GridAgent(BOX, spaces.Discrete(2), "greedy", resolution=(2, 4))
+    with pytest.raises(ValueError, match="is not the id of a current leaf"):
+        agent.leaf_info(cell)  # type: ignore[arg-type]
+
+
+def test_save_refuses_a_policy_only_that_is_not_a_bool(tmp_path) -> None:
+    agent = TreeAgent(BOX, spaces.Discrete(3), "greedy")
+    with pytest.raises(ValueError, match="policy_only must be True or False, got 'yes'"):
+        agent.save(tmp_path / "a.npz", policy_only="yes")  # type: ignore[arg-type]
+    assert not (tmp_path / "a.npz").exists()
