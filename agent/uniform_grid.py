@@ -27,10 +27,17 @@ class UniformGrid:
         self, low: list[float], high: list[float], resolution: int | Sequence[int]
     ) -> None:
         self.dims = len(low)
-        if isinstance(resolution, int | np.integer):
-            cells = [int(resolution)] * self.dims
-        else:
-            cells = [int(r) for r in resolution]
+        items = (
+            [resolution] * self.dims
+            if isinstance(resolution, int | np.integer)
+            else list(resolution)
+            if isinstance(resolution, Sequence | np.ndarray) and not isinstance(resolution, str)
+            else None
+        )
+        whole = items is not None and all(
+            isinstance(r, int | np.integer) and not isinstance(r, bool | np.bool_) for r in items
+        )
+        cells = [int(r) for r in items] if items is not None and whole else []
         if len(cells) != self.dims or any(c < 1 for c in cells):
             raise ValueError(
                 f"resolution must be a positive int or {self.dims} positive ints, "

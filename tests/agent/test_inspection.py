@@ -70,3 +70,12 @@ def test_save_refuses_a_policy_only_that_is_not_a_bool(tmp_path) -> None:
     with pytest.raises(ValueError, match="policy_only must be True or False, got 'yes'"):
         agent.save(tmp_path / "a.npz", policy_only="yes")  # type: ignore[arg-type]
     assert not (tmp_path / "a.npz").exists()
+
+
+@pytest.mark.parametrize("resolution", [True, 2.5, None, "44", [2, True], [2, 3.0], [2]])
+def test_a_grid_resolution_that_is_not_whole_cell_counts_is_refused(resolution: object) -> None:
+    """``True`` and ``[2, True]`` used to give one-cell dimensions, ``[2, 3.0]`` was rounded,
+    and ``2.5`` or ``None`` failed with "object is not iterable"."""
+    with pytest.raises(ValueError, match="resolution must be a positive int or 2 positive ints"):
+        GridAgent(BOX, spaces.Discrete(2), "greedy", resolution=resolution)  # type: ignore[arg-type]
+    assert GridAgent(BOX, spaces.Discrete(2), "greedy", resolution=np.array([2, 3])).n_leaves == 6
