@@ -121,3 +121,21 @@ def greedy_return() -> Callable[[gym.Env, Any, int], float]:
     """``greedy_return(env, agent, seed)``: the return of one episode of ``agent.predict``
     from ``env.reset(seed=seed)``."""
     return _greedy_return
+
+
+def _every_agent_kind(observation_space: spaces.Space, action_space: spaces.Space) -> list[Any]:
+    from agent import AdaptiveQAgent, TileCodingAgent, preset
+
+    return [
+        preset("paper").agent(observation_space, action_space, 0),
+        preset("general").agent(observation_space, action_space, 0),
+        AdaptiveQAgent(observation_space, action_space, 0),
+        TileCodingAgent(observation_space, action_space, 0),
+    ]
+
+
+@pytest.fixture
+def every_agent_kind() -> Callable[[spaces.Space, spaces.Space], list[Any]]:
+    """One fresh agent of each kind a user's env meets (the paper's tree, the general tree,
+    adaptive Q-learning, the tile coder), seed 0, for ``(observation_space, action_space)``."""
+    return _every_agent_kind

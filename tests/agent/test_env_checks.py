@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from gymnasium import spaces
 
-from agent import AdaptiveQAgent, TileCodingAgent, preset
+from agent import preset
 from agent.env_checks import (
     MAX_REWARD_MAGNITUDE,
     CheckedEnv,
@@ -66,16 +66,6 @@ class Scripted(gym.Env):
         return valid
 
 
-def _agents() -> list[Any]:
-    actions = Scripted.action_space
-    return [
-        preset("paper").agent(BOX, actions, 0),
-        preset("general").agent(BOX, actions, 0),
-        AdaptiveQAgent(BOX, actions, 0),
-        TileCodingAgent(BOX, actions, 0),
-    ]
-
-
 def _replace(index: int, value: Any) -> Callable[[tuple], Any]:
     return lambda valid: (*valid[:index], value, *valid[index + 1 :])
 
@@ -106,9 +96,9 @@ HOSTILE: list[tuple[str, Callable[[tuple], Any], str]] = [
 
 @pytest.mark.parametrize(("name", "bad", "message"), HOSTILE, ids=[h[0] for h in HOSTILE])
 def test_every_agent_refuses_a_bad_step_naming_it_and_where(
-    name: str, bad: Callable[[tuple], Any], message: str
+    name: str, bad: Callable[[tuple], Any], message: str, every_agent_kind: Callable[..., list[Any]]
 ) -> None:
-    for agent in _agents():
+    for agent in every_agent_kind(BOX, Scripted.action_space):
         with pytest.raises(ValueError, match=message) as caught:
             agent.learn(Scripted(bad, bad_at=4), 3)
         assert str(caught.value).startswith("env.step (step 4 of the learn call's episode 0)"), str(
@@ -116,7 +106,9 @@ def test_every_agent_refuses_a_bad_step_naming_it_and_where(
         )
 
 
-def test_a_bad_reset_is_refused_naming_the_episode() -> None:
+def test_a_bad_reset_is_refused_naming_the_episode(
+    every_agent_kind: Callable[..., list[Any]],
+) -> None:
     class BadReset(Scripted):
         def reset(self, *, seed: int | None = None, options: dict | None = None) -> Any:
             super().reset(seed=seed)
@@ -126,15 +118,17 @@ def test_a_bad_reset_is_refused_naming_the_episode() -> None:
         def reset(self, *, seed: int | None = None, options: dict | None = None) -> Any:
             return ZERO.copy()
 
-    for agent in _agents():
+    for agent in every_agent_kind(BOX, Scripted.action_space):
         with pytest.raises(ValueError, match=r"env.reset \(the learn call's episode 1\): .*"):
             agent.learn(BadReset(), 3, reset_seed=0)
         with pytest.raises(ValueError, match=r"env.reset .* returned a ndarray, not a tuple"):
             agent.learn(OldReset(), 1)
 
 
-def test_predict_refuses_a_bad_observation_by_name() -> None:
-    for agent in _agents():
+def test_predict_refuses_a_bad_observation_by_name(
+    every_agent_kind: Callable[..., list[Any]],
+) -> None:
+    for agent in every_agent_kind(BOX, Scripted.action_space):
         with pytest.raises(ValueError, match=r"predict: observation \[nan, 0.0\] is not finite"):
             agent.predict(np.array([np.nan, 0.0]))
         with pytest.raises(ValueError, match="predict: observation has 1 values"):
@@ -251,22 +245,14 @@ class Sloppy(gym.Env):
         return self.x.astype(np.float32), -1.0, bool(abs(self.x[0]) > 5), self.t >= 30, {}
 
 
-def _agents_for(env: gym.Env) -> list[Any]:
-    space, actions = env.observation_space, env.action_space
-    return [
-        preset("general").agent(space, actions, 0),
-        preset("paper").agent(space, actions, 0),
-        TileCodingAgent(space, actions, 0),
-        AdaptiveQAgent(space, actions, 0),
-    ]
-
-
-def test_an_observation_outside_the_bounds_is_warned_of_once_per_learn_call() -> None:
+def test_an_observation_outside_the_bounds_is_warned_of_once_per_learn_call(
+    every_agent_kind: Callable[..., list[Any]],
+) -> None:
     """Not refused (envs that overstep their declared box a little are common, and the agents
     still act there), not silent: one warning naming the input, the value, the bounds, the step
     and the episode, pointed at the caller's line."""
     env = Sloppy()
-    for learner in _agents_for(env):
+    for learner in every_agent_kind(env.observation_space, env.action_space):
         with pytest.warns(ObservationOutOfBounds) as caught:
             learner.learn(env, 3, reset_seed=0)
         assert len(caught) == 1
@@ -282,9 +268,11 @@ def test_an_observation_outside_the_bounds_is_warned_of_once_per_learn_call() ->
             learner.learn(env, 1)
 
 
-def test_observations_inside_the_bounds_raise_no_warning() -> None:
+def test_observations_inside_the_bounds_raise_no_warning(
+    every_agent_kind: Callable[..., list[Any]],
+) -> None:
     env = gym.make("MountainCar-v0")
-    for learner in _agents_for(env):
+    for learner in every_agent_kind(env.observation_space, env.action_space):
         with warnings.catch_warnings():
             warnings.simplefilter("error", ObservationOutOfBounds)
             learner.learn(env, 2, reset_seed=0)
