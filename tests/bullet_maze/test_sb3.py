@@ -4,6 +4,7 @@ and PPO on continuous actions, SAC with HerReplayBuffer on the goal observation.
 from __future__ import annotations
 
 import warnings
+from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
@@ -15,9 +16,17 @@ sb3 = pytest.importorskip("stable_baselines3")  # in the test extras (see pyproj
 import torch  # noqa: E402
 from stable_baselines3 import PPO, SAC, HerReplayBuffer  # noqa: E402
 from stable_baselines3.common.env_checker import check_env  # noqa: E402
+from stable_baselines3.common.logger import Logger, configure  # noqa: E402
 
 # One thread: on a shared 2-core machine torch's second thread made a short SAC run 14x slower.
 torch.set_num_threads(1)
+
+
+@pytest.fixture
+def run_logger(tmp_path: Path) -> Logger:
+    """A logger in the test's own folder that writes nothing: without one, SB3's ``learn``
+    makes an ``SB3-<time>`` folder in the system's temp folder on every run and leaves it."""
+    return configure(str(tmp_path), [])
 
 
 @pytest.mark.parametrize(
@@ -42,7 +51,7 @@ def test_sb3_check_env(robot: str, actions: str, observation: str) -> None:
 
 
 @pytest.mark.parametrize("algorithm", [SAC, PPO])
-def test_sac_and_ppo_train_on_continuous_actions(algorithm: type) -> None:
+def test_sac_and_ppo_train_on_continuous_actions(algorithm: type, run_logger: Logger) -> None:
     env = gym.make("BulletMaze-v0", robot="rover", actions="continuous", observation="lidar")
     kwargs = (
         {"learning_starts": 64, "batch_size": 32}
@@ -50,6 +59,7 @@ def test_sac_and_ppo_train_on_continuous_actions(algorithm: type) -> None:
         else {"n_steps": 64, "batch_size": 32, "n_epochs": 1}
     )
     model = algorithm("MlpPolicy", env, seed=0, device="cpu", **kwargs)
+    model.set_logger(run_logger)
     model.learn(total_timesteps=128)
     obs, _ = env.reset(seed=0)
     action, _ = model.predict(obs, deterministic=True)
@@ -58,7 +68,7 @@ def test_sac_and_ppo_train_on_continuous_actions(algorithm: type) -> None:
     env.close()
 
 
-def test_her_relabels_goals_with_compute_reward() -> None:
+def test_her_relabels_goals_with_compute_reward(run_logger: Logger) -> None:
     env = gym.make(
         "BulletMaze-v0",
         robot="disc",
@@ -76,6 +86,7 @@ def test_her_relabels_goals_with_compute_reward() -> None:
         seed=0,
         device="cpu",
     )
+    model.set_logger(run_logger)
     model.learn(total_timesteps=160)
     buffer = model.replay_buffer
     assert isinstance(buffer, HerReplayBuffer)
