@@ -21,6 +21,12 @@ they emit are common, and the agents still act there (the tree files such a poin
 leaves). It is not silent either: the first one in a ``learn`` call raises a
 :class:`ObservationOutOfBounds` warning naming the input, its value, the bounds, the step and the
 episode.
+
+An env that never ends an episode (a user's env made directly, without ``gymnasium.make``'s
+``TimeLimit``) would keep ``learn`` in its first episode for ever, silently. An episode that
+reaches :data:`LONG_EPISODE_STEPS` steps, in an env that declares no time limit, raises a
+:class:`LongEpisode` warning (once per ``learn`` call) naming the episode, the steps and the
+remedy; the episode goes on, since an env may end its own episodes late.
 """
 
 from __future__ import annotations
@@ -34,10 +40,39 @@ from types import FrameType
 from typing import Any
 
 import numpy as np
+from gymnasium.wrappers import TimeLimit
 
 
 class ObservationOutOfBounds(UserWarning):
     """An env handed ``learn`` an observation outside the agent's bounds (module docstring)."""
+
+
+class LongEpisode(UserWarning):
+    """A ``learn`` episode has run :data:`LONG_EPISODE_STEPS` steps in an env that declares no
+    time limit (module docstring)."""
+
+
+LONG_EPISODE_STEPS = 100_000
+"""Steps of one ``learn`` episode after which an env that declares no time limit is warned of:
+20x the paper's cap of 5,000 and 100x Gymnasium's usual limits (200-1,000); about 10-15 s of
+the general agent's steps on a classic task."""
+
+
+def declared_time_limit(env: Any) -> int | None:
+    """The step limit ``env`` declares: its spec's ``max_episode_steps`` or the smallest limit of
+    a ``gymnasium.wrappers.TimeLimit`` in its wrapper chain; None when it declares none."""
+    limits: list[int] = []
+    seen = 0
+    while env is not None and seen < 100:  # (a wrapper chain, never a cycle in practice)
+        spec = getattr(env, "spec", None)
+        spec_limit = getattr(spec, "max_episode_steps", None)
+        if isinstance(spec_limit, int) and not isinstance(spec_limit, bool):
+            limits.append(spec_limit)
+        if isinstance(env, TimeLimit):
+            limits.append(int(env._max_episode_steps))
+        env = env.__dict__.get("env") if hasattr(env, "__dict__") else None
+        seen += 1
+    return min(limits) if limits else None
 
 
 MAX_REWARD_MAGNITUDE = 1e100
@@ -130,6 +165,9 @@ class CheckedEnv:
         self.bounds = bounds
         """The box the agent was built for; None once an observation outside it was warned of
         (once per ``learn`` call), or when not given."""
+        self.long_episode = LONG_EPISODE_STEPS if declared_time_limit(env) is None else None
+        """The step of an episode at which :class:`LongEpisode` is raised; None once it was
+        (once per ``learn`` call), or when the env declares a time limit."""
 
     def __getattr__(self, name: str) -> Any:
         if name == "env":  # not set yet (a copy being built): no recursion
@@ -151,6 +189,8 @@ class CheckedEnv:
     def step(self, action: Any) -> Any:
         """``env.step(action)``, checked: five values, a valid observation and reward, bool
         ``terminated`` and ``truncated``, a dict ``info``."""
+        if self.steps == self.long_episode:  # that many steps taken, none ended the episode
+            self._warn_long_episode()
         self.steps += 1
         result = self.env.step(action)
         if type(result) is tuple and len(result) == 5:
@@ -175,6 +215,19 @@ class CheckedEnv:
         if self.bounds is not None:
             self._check_bounds(values, where)
         return result
+
+    def _warn_long_episode(self) -> None:
+        warnings.warn(
+            f"env.step (the learn call's episode {self.episode}): the episode has run "
+            f"{self.steps:,} steps without ending "
+            "(terminated or truncated), and the env declares no time limit; learn returns only "
+            "when each of its episodes ends. Give the env a time limit "
+            "(gymnasium.wrappers.TimeLimit(env, max_episode_steps=...), or register it with "
+            "max_episode_steps and make it with gymnasium.make). Warned once per learn call.",
+            LongEpisode,
+            stacklevel=_caller_level(),
+        )
+        self.long_episode = None
 
     def _step_where(self) -> str:
         return f"env.step (step {self.steps} of the learn call's episode {self.episode})"

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from gymnasium import spaces
 
-from agent import preset
+from agent import env_checks, preset
 from agent.env_checks import (
     MAX_REWARD_MAGNITUDE,
     CheckedEnv,
@@ -277,3 +277,72 @@ def test_observations_inside_the_bounds_raise_no_warning(
             warnings.simplefilter("error", ObservationOutOfBounds)
             learner.learn(env, 2, reset_seed=0)
     env.close()
+
+
+class Endless(gym.Env):
+    """Never terminates; truncates itself after ``ends_at`` steps (so that the test ends), with
+    no time limit declared: made directly, not through ``gymnasium.make``."""
+
+    observation_space = BOX
+    action_space = spaces.Discrete(2)
+
+    def __init__(self, ends_at: int) -> None:
+        self.ends_at = ends_at
+
+    def reset(self, seed: int | None = None, options: dict | None = None) -> tuple:
+        super().reset(seed=seed)
+        self.t = 0
+        return ZERO, {}
+
+    def step(self, action: int) -> tuple:
+        self.t += 1
+        return ZERO, -1.0, False, self.t >= self.ends_at, {}
+
+
+def test_a_long_episode_in_an_env_without_a_time_limit_is_warned_of_once_per_learn_call(
+    every_agent_kind: Callable[..., list[Any]], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """An env that never ends an episode would keep ``learn`` in it for ever, silently: at
+    ``LONG_EPISODE_STEPS`` steps one warning names the episode, the steps and the remedy, pointed
+    at the caller's line; the episode goes on."""
+    monkeypatch.setattr(env_checks, "LONG_EPISODE_STEPS", 50)
+    env = Endless(ends_at=80)
+    for learner in every_agent_kind(env.observation_space, env.action_space):
+        with pytest.warns(env_checks.LongEpisode) as caught:
+            history = learner.learn(env, 2, reset_seed=0)
+        assert len(caught) == 1
+        message = str(caught[0].message)
+        assert message.startswith(
+            "env.step (the learn call's episode 0): the episode has run 50 steps without "
+            "ending (terminated or truncated), and the env declares no time limit"
+        ), message
+        assert "gymnasium.wrappers.TimeLimit" in message
+        assert caught[0].filename == __file__
+        assert [h.steps for h in history] == [80, 80]  # warned, not stopped
+        with pytest.warns(env_checks.LongEpisode):  # once per call, so again in the next
+            learner.learn(env, 1)
+
+
+def test_an_env_with_a_time_limit_or_short_episodes_raises_no_long_episode_warning(
+    every_agent_kind: Callable[..., list[Any]], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(env_checks, "LONG_EPISODE_STEPS", 50)
+    limited = gym.wrappers.TimeLimit(Endless(ends_at=10**9), max_episode_steps=80)
+    short = Endless(ends_at=50)  # ends at the threshold: no step past it
+    for env in (limited, short):
+        for learner in every_agent_kind(env.observation_space, env.action_space):
+            with warnings.catch_warnings():
+                warnings.simplefilter("error", env_checks.LongEpisode)
+                learner.learn(env, 1, reset_seed=0)
+
+
+def test_declared_time_limit_reads_the_spec_and_every_time_limit_wrapper() -> None:
+    from gymnasium.envs.classic_control import CartPoleEnv
+
+    assert env_checks.declared_time_limit(gym.make("CartPole-v1")) == 500
+    assert env_checks.declared_time_limit(gym.make("CartPole-v1", max_episode_steps=20)) == 20
+    assert env_checks.declared_time_limit(CartPoleEnv()) is None
+    assert env_checks.declared_time_limit(gym.wrappers.TimeLimit(CartPoleEnv(), 7)) == 7
+    nested = gym.wrappers.TimeLimit(gym.wrappers.TimeLimit(CartPoleEnv(), 30), 9)
+    assert env_checks.declared_time_limit(nested) == 9
+    assert env_checks.declared_time_limit(Endless(5)) is None
