@@ -5,7 +5,9 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeGuard
+
+import numpy as np
 
 
 @dataclass(frozen=True)
@@ -44,9 +46,11 @@ def check_learn_arguments(
     reset_seed: object = None,
 ) -> None:
     """A ValueError naming the argument unless ``episodes`` is an int >= 0 (not a bool),
-    ``env`` has a discrete action space of the agent's ``n_actions`` actions, ``callback`` is
-    None or callable and ``reset_seed`` is None or an int >= 0 (Gymnasium's ``reset`` would
-    otherwise refuse it without naming it, or a callback of 5 fail after the first episode)."""
+    ``env`` is one Gymnasium env (not an id, a class or a vector env) whose action space is
+    ``Discrete(n_actions)`` starting at 0 (the agent's actions are ``0 .. n_actions - 1``; an env
+    numbered from 1 would take them as other actions), ``callback`` is None or callable and
+    ``reset_seed`` is None or an int >= 0 (Gymnasium's ``reset`` would otherwise refuse it
+    without naming it, or a callback of 5 fail after the first episode)."""
     if isinstance(episodes, bool) or not isinstance(episodes, int) or episodes < 0:
         raise ValueError(f"episodes must be an int >= 0, got {episodes!r}")
     if callback is not None and not callable(callback):
@@ -55,11 +59,49 @@ def check_learn_arguments(
         isinstance(reset_seed, bool) or not isinstance(reset_seed, int) or reset_seed < 0
     ):
         raise ValueError(f"reset_seed must be None or an int >= 0, got {reset_seed!r}")
+    _check_one_env(env)
     space = getattr(env, "action_space", None)
     env_actions = getattr(space, "n", None)
-    if env_actions is None or int(env_actions) != n_actions:
+    start = getattr(space, "start", 0)
+    if not _whole(env_actions) or int(env_actions) != n_actions:
         raise ValueError(
             f"env.action_space {space!r} does not match the agent's {n_actions} actions"
+        )
+    if not _whole(start) or int(start) != 0:
+        raise ValueError(
+            f"env.action_space {space!r} starts at {start}, but the agent's actions are "
+            f"0 .. {n_actions - 1}: the env would take them as other actions; "
+            "agent.adapt_env(env) renumbers it"
+        )
+
+
+def _whole(value: object) -> TypeGuard[int | np.integer[Any]]:
+    """An int or a numpy integer, not a bool."""
+    return isinstance(value, int | np.integer) and not isinstance(value, bool)
+
+
+def _check_one_env(env: Any) -> None:
+    """A ValueError unless ``env`` is one env: an object with ``reset`` and ``step`` that is not
+    a class and not a vector env (``num_envs`` copies stepped as one)."""
+    if isinstance(env, str):
+        raise ValueError(
+            f"env must be a Gymnasium env, got the string {env!r}; make it first, "
+            f"gymnasium.make({env!r})"
+        )
+    if isinstance(env, type):
+        raise ValueError(
+            f"env must be a Gymnasium env, got the class {env.__name__}; pass an instance"
+        )
+    if not (callable(getattr(env, "reset", None)) and callable(getattr(env, "step", None))):
+        raise ValueError(
+            f"env must be a Gymnasium env with reset() and step(), got {env!r} "
+            f"({type(env).__name__})"
+        )
+    copies = getattr(env, "num_envs", None)
+    if _whole(copies):
+        raise ValueError(
+            f"env is a vector env of {copies} copies ({type(env).__name__}); learn steps one "
+            "env: pass one made with gymnasium.make"
         )
 
 
