@@ -34,12 +34,14 @@ from experiments import (
     EnvOptions,
     Experiment,
     FolderState,
+    ModuleError,
     Playback,
     RunFailed,
     TasksLost,
     TrainJob,
     Transfer,
     default_workers,
+    import_env_modules,
     make_backend,
 )
 
@@ -64,8 +66,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     command = args.command or "default"
     try:
+        args.allow_env = [*(args.allow_env or ()), *sorted(import_env_modules(_modules(args)))]
         return COMMANDS[command](args)
-    except (ConfigError, FileNotFoundError) as error:
+    except (ConfigError, FileNotFoundError, ModuleError) as error:
         parser.exit(2, f"run.py {command}: error: {error}\n")
     except TasksLost as error:
         print(f"run.py {command}: {error}; finished runs are kept.", file=sys.stderr)
@@ -92,6 +95,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
     _add_allow_env(parser)
+    _add_env_module(parser)
     parser.set_defaults(
         command=None,
         config=DEFAULT_CONFIG,
@@ -110,6 +114,7 @@ def build_parser() -> argparse.ArgumentParser:
         param=[],
         agent_param=[],
         allow_env=[],
+        env_module=[],
     )
     sub = parser.add_subparsers(dest="command", metavar="SUBCOMMAND")
 
@@ -386,6 +391,17 @@ def _add_allow_env(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def _add_env_module(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--env-module",
+        action="append",
+        metavar="MODULE",
+        help="import this module first, here and in every worker, and accept the Gymnasium "
+        "ids it registers (repeatable): your own envs, for experiment files and --config; "
+        "it must be importable (on PYTHONPATH, or installed)",
+    )
+
+
 def _add_config_source(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--config",
@@ -474,6 +490,10 @@ def _env_options(args: argparse.Namespace) -> EnvOptions:
 
 def _allowed(args: argparse.Namespace) -> tuple[str, ...]:
     return tuple(args.allow_env or ())
+
+
+def _modules(args: argparse.Namespace) -> tuple[str, ...]:
+    return tuple(args.env_module or ())
 
 
 def cmd_train(args: argparse.Namespace) -> int:
@@ -583,7 +603,7 @@ def cmd_experiment(args: argparse.Namespace) -> int:
     if not args.report_only:
         optimal = experiment.check()
         workers = args.workers or default_workers()
-        backend = make_backend(args.backend, workers, args.address)
+        backend = make_backend(args.backend, workers, args.address, env_modules=_modules(args))
         bars: list[Any] = []
 
         def on_start(state: FolderState) -> None:
@@ -774,7 +794,7 @@ def cmd_transfer(args: argparse.Namespace) -> int:
     )
     if not args.report_only:
         workers = args.workers or default_workers()
-        backend = make_backend(args.backend, workers, args.address)
+        backend = make_backend(args.backend, workers, args.address, env_modules=_modules(args))
         bars: list[Any] = []
 
         def on_start(state: Any) -> None:

@@ -24,6 +24,8 @@ Behind it, one small module per concern:
 - :mod:`experiments.lock`: one writer per results folder;
 - :mod:`experiments.backends`: serial, process-pool and Ray executors that survive a worker's
   death;
+- :mod:`experiments.env_modules`: a user's modules that register their own envs
+  (``run.py --env-module``), imported here and in every worker;
 - :mod:`experiments.runner`: runs an experiment (strategies x runs) on a backend, verified;
 - :mod:`experiments.statistics`: moving averages, bootstrap bands, convergence, IQM, P(improvement);
 - :mod:`experiments.plots`: learning curves and the Figure 4 analog;
@@ -54,6 +56,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from experiments.backends import BACKENDS, RunFailed, TasksLost, default_workers, make_backend
     from experiments.config import EXPERIMENT_DIR, MODES, ConfigError
+    from experiments.env_modules import ModuleError, import_env_modules
     from experiments.jobs import EnvOptions, Experiment, Playback, TrainJob
     from experiments.layout_sheet import draw_layout_sheet, draw_suite_sheet
     from experiments.runner import FolderState
@@ -67,6 +70,8 @@ _EXPORTS = {
     "EXPERIMENT_DIR": "experiments.config",
     "MODES": "experiments.config",
     "ConfigError": "experiments.config",
+    "ModuleError": "experiments.env_modules",
+    "import_env_modules": "experiments.env_modules",
     "EnvOptions": "experiments.jobs",
     "Experiment": "experiments.jobs",
     "Playback": "experiments.jobs",
@@ -88,6 +93,7 @@ __all__ = [
     "EnvOptions",
     "Experiment",
     "FolderState",
+    "ModuleError",
     "Playback",
     "RunFailed",
     "TasksLost",
@@ -96,6 +102,7 @@ __all__ = [
     "default_workers",
     "draw_layout_sheet",
     "draw_suite_sheet",
+    "import_env_modules",
     "make_backend",
 ]
 

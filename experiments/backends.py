@@ -15,6 +15,7 @@ it propagates at once. When the driver dies, its workers notice within half a se
 from __future__ import annotations
 
 import contextlib
+import functools
 import logging
 import multiprocessing
 import os
@@ -28,6 +29,8 @@ from dataclasses import dataclass
 from multiprocessing.connection import Connection, wait
 from typing import Any, Protocol, TypeVar
 
+from experiments.env_modules import call_with_modules
+
 T = TypeVar("T")
 R = TypeVar("R")
 
@@ -35,6 +38,14 @@ BACKENDS = ("process", "ray", "serial")
 DEFAULT_RETRIES = 2
 """Retries of a task whose worker died (so three attempts in all)."""
 log = logging.getLogger(__name__)
+
+
+def with_env_modules(fn: Callable[[T], R], env_modules: tuple[str, ...]) -> Callable[[T], R]:
+    """``fn``, made to import ``env_modules`` first in the worker that runs it
+    (:mod:`experiments.env_modules`); ``fn`` itself when there are none."""
+    if not env_modules:
+        return fn
+    return functools.partial(call_with_modules, env_modules, fn)
 
 
 @dataclass(frozen=True)
@@ -192,7 +203,10 @@ class ProcessBackend:
         workers: int | None = None,
         start_method: str = "spawn",
         max_retries: int = DEFAULT_RETRIES,
+        env_modules: tuple[str, ...] = (),
     ) -> None:
+        self.env_modules = env_modules
+        """Modules each worker imports before a task (``run.py --env-module``)."""
         self.workers = workers or default_workers()
         if self.workers < 1:
             raise ValueError(f"workers must be >= 1, got {self.workers}")
@@ -205,6 +219,7 @@ class ProcessBackend:
         """Yield results as workers finish; stops every worker if the consumer stops."""
         if not tasks:
             return
+        fn = with_env_modules(fn, self.env_modules)
         context = multiprocessing.get_context(self.start_method)
         queue = deque(range(len(tasks)))
         deaths = [0] * len(tasks)
@@ -296,7 +311,10 @@ class RayBackend:
         workers: int | None = None,
         address: str | None = None,
         max_retries: int = DEFAULT_RETRIES,
+        env_modules: tuple[str, ...] = (),
     ) -> None:
+        self.env_modules = env_modules
+        """Modules each worker imports before a task (``run.py --env-module``)."""
         try:
             import ray
         except ImportError as error:
@@ -337,6 +355,7 @@ class RayBackend:
         lost: list[LostTask] = []
         try:
             remote = ray.remote(num_cpus=1, max_retries=self.max_retries)(_call)
+            fn = with_env_modules(fn, self.env_modules)
             refs = [remote.remote(fn, task) for task in tasks]
             task_of = {ref: task for ref, task in zip(refs, tasks, strict=True)}
             pending = list(refs)
@@ -369,12 +388,14 @@ def make_backend(
     workers: int | None = None,
     address: str | None = None,
     max_retries: int = DEFAULT_RETRIES,
+    env_modules: tuple[str, ...] = (),
 ) -> Backend:
-    """The backend called ``name`` (``process``, ``ray`` or ``serial``)."""
+    """The backend called ``name`` (``process``, ``ray`` or ``serial``); its workers import
+    ``env_modules`` before each task (``serial`` runs in this process, which imported them)."""
     if name == "process":
-        return ProcessBackend(workers, max_retries=max_retries)
+        return ProcessBackend(workers, max_retries=max_retries, env_modules=env_modules)
     if name == "ray":
-        return RayBackend(workers, address, max_retries=max_retries)
+        return RayBackend(workers, address, max_retries=max_retries, env_modules=env_modules)
     if name == "serial":
         return SerialBackend()
     raise ValueError(f"backend: expected one of {', '.join(BACKENDS)}, got {name!r}")

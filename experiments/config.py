@@ -19,8 +19,8 @@ the key (``paper_fig4.toml: [strategy.2] exploration_params epsilon: ...``):
 - sizes: runs, episodes, the cap, strategies, seeds and names have the bounds below;
 - the environment id: one registered by this project or one of Gymnasium's own (their
   registrations import no user code), or an id the caller allows explicitly
-  (``run.py --allow-env``). Never an import path (``module:Id``), which would make Gymnasium
-  import that module.
+  (``run.py --allow-env``, or registered by a module named with ``run.py --env-module``).
+  Never an import path (``module:Id``), which would make Gymnasium import that module.
 """
 
 from __future__ import annotations
@@ -326,7 +326,8 @@ def check_env_id(env_id: str, where: str, allowed: Collection[str] = ()) -> None
         raise ConfigError(
             f"{where}: {env_id!r} is not a registered Gymnasium id (this project registers "
             f"{', '.join(sorted(project_env_ids()))}; Gymnasium's own, such as CartPole-v1, "
-            "are accepted too)"
+            "are accepted too; an env of your own is registered by naming the module that "
+            "registers it, run.py --env-module MODULE)"
         )
     if env_id not in project_env_ids() | builtin_env_ids() and env_id not in allowed:
         raise ConfigError(

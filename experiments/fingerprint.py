@@ -115,14 +115,53 @@ def env_fingerprint(spec: EnvSpec) -> str:
         }
     arguments = {**defaults, **registered.kwargs, **spec.make_kwargs()}
     arguments.pop("max_episode_steps", None)
-    return digest(
-        {
-            "id": spec.id,
-            "entry_point": entry if isinstance(entry, str) else repr(entry),
-            "max_episode_steps": spec.max_episode_steps,
-            "arguments": arguments,
-        }
-    )
+    fields: dict[str, Any] = {
+        "id": spec.id,
+        "entry_point": entry if isinstance(entry, str) else repr(entry),
+        "max_episode_steps": spec.max_episode_steps,
+        "arguments": arguments,
+    }
+    module = entry.split(":")[0] if isinstance(entry, str) else getattr(entry, "__module__", "")
+    package = str(module).split(".")[0]
+    if package not in OWN_PACKAGES:  # a user's env: its code is an input of the run
+        fields["source"] = package_fingerprint(package)
+    return digest(fields)
+
+
+OWN_PACKAGES = frozenset({"gymnasium", "bullet_maze"})
+"""Packages whose envs' code the code fingerprint already covers (``bullet_maze``'s sources,
+Gymnasium's version); any other env's package is fingerprinted with the env."""
+
+MAX_PACKAGE_FILES = 2000
+"""The most Python files of a user's env package that are read for its fingerprint."""
+
+
+@cache
+def package_fingerprint(package: str) -> str:
+    """The source fingerprint of the top-level package (every ``.py`` below it, sorted, at most
+    :data:`MAX_PACKAGE_FILES`) or the single module that defines a user's env, so that a change
+    to the env's code changes its runs' inputs (``run.py --env-module``). A module without a
+    source file (built in, compiled) is named instead."""
+    loaded = sys.modules.get(package)
+    if loaded is None:
+        try:
+            loaded = importlib.import_module(package)
+        except Exception:
+            return f"unreadable: {package}"
+    file = getattr(loaded, "__file__", None)
+    if not file or not file.endswith(".py"):
+        return f"no source: {package}"
+    path = Path(file).resolve()
+    files = sorted(path.parent.rglob("*.py")) if path.name == "__init__.py" else [path]
+    if len(files) > MAX_PACKAGE_FILES:
+        files = files[:MAX_PACKAGE_FILES]
+    sources = {}
+    for source in files:
+        try:
+            sources[str(source.relative_to(path.parent))] = source_fingerprint(source)
+        except (OSError, SyntaxError, ValueError):
+            sources[str(source.relative_to(path.parent))] = "unreadable"
+    return digest(sources)
 
 
 def resolved_config(
@@ -288,7 +327,7 @@ def run_inputs(
 INPUT_LABELS = {
     "task": "the task that computes a run",
     "config": "the resolved configuration",
-    "env": "the environment's registration or arguments",
+    "env": "the environment's registration, arguments or (a user's env) code",
     "layout": "the maze layout",
     "robot": "the robot's file",
     "code": "the code version",

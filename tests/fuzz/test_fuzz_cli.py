@@ -190,6 +190,7 @@ VOCABULARY = [
     "--report-only",
     "--accept-code-change",
     "--allow-env",
+    "--env-module",
     "--fps",
     "--max-frames",
     "--no-progress",
