@@ -537,7 +537,7 @@ def cmd_train(args: argparse.Namespace) -> int:
                 f"training {strategy.name} in {where}, seed {seed}: up to "
                 f"{config.episodes} episodes"
                 + (f" or {budget:g} s" if budget else "")
-                + f"; optimal {optimal:g} steps",
+                + _optimum_text(optimal, "; optimal {} steps"),
                 file=sys.stdout,
             )
 
@@ -547,31 +547,52 @@ def cmd_train(args: argparse.Namespace) -> int:
             bar.set_postfix(avg_steps=f"{np.mean(recent[-100:]):.0f}", leaves=row[5], refresh=False)
 
         result = job.run(on_start, on_episode)
-    _print_training_summary(result)
+    _print_training_summary(result, config.env.is_maze)
     return 0
 
 
-def _print_training_summary(result: Any) -> None:
+def _optimum_text(optimal: float, form: str) -> str:
+    """``form`` with the optimum's steps, or nothing where there is none (a task other than a
+    maze has no known optimum: its ``optimal_steps`` is nan)."""
+    return form.format(f"{optimal:g}") if math.isfinite(optimal) and optimal > 0 else ""
+
+
+def _print_training_summary(result: Any, is_maze: bool) -> None:
+    """A maze run's success rate and steps against the optimum; any other task's returns and
+    how its episodes ended (its ``terminated`` need not be a success: CartPole's is a fall)."""
     rows, training, optimal = result.training.rows, result.training, result.optimal_steps
     steps = np.array([r[1] for r in rows])
+    returns = np.array([r[2] for r in rows])
     success = np.array([r[3] for r in rows], dtype=bool)
+    truncated = np.array([r[4] for r in rows], dtype=bool)
     last, count = slice(-100, None), min(100, len(rows))
     stop = "stopped by the time budget" if training.stopped_by_budget else "all episodes done"
     print(
         f"\n{len(rows)} episodes in {training.wall_time_s:.1f} s ({stop}), "
         f"{training.steps_per_second:,.0f} steps/s (env + agent)"
     )
-    print(
-        f"success rate: {success.mean():.1%} overall, {success[last].mean():.1%} in the "
-        f"last {count} episodes"
-    )
-    ratio = f" ({steps[last].mean() / optimal:.2f}x)" if optimal > 0 else ""
-    print(
-        f"average steps, last {count} episodes: {steps[last].mean():.1f}{ratio} vs optimal "
-        f"{optimal:g}"
-    )
-    outcome = "reached the goal" if result.greedy.success else "did not reach the goal"
-    print(f"greedy policy: {outcome} in {result.greedy.steps} steps")
+    greedy = result.greedy
+    if is_maze:
+        print(
+            f"success rate: {success.mean():.1%} overall, {success[last].mean():.1%} in the "
+            f"last {count} episodes"
+        )
+        ratio = f" ({steps[last].mean() / optimal:.2f}x)" if optimal > 0 else ""
+        print(
+            f"average steps, last {count} episodes: {steps[last].mean():.1f}{ratio}"
+            + _optimum_text(optimal, " vs optimal {}")
+        )
+        outcome = "reached the goal" if greedy.success else "did not reach the goal"
+        print(f"greedy policy: {outcome} in {greedy.steps} steps")
+    else:
+        print(
+            f"return per episode: mean {returns.mean():g} overall, {returns[last].mean():g} in "
+            f"the last {count} episodes; steps per episode, last {count}: "
+            f"{steps[last].mean():.1f}; cut by the time limit: {truncated[last].mean():.0%} "
+            f"of the last {count}"
+        )
+        ending = "cut by the time limit" if greedy.truncated else "ended by the task"
+        print(f"greedy policy: return {greedy.episode_return:g} in {greedy.steps} steps ({ending})")
     print(f"leaves: {result.leaves}")
     written = ", ".join(sorted(p.name for p in result.out.iterdir() if p.is_file()))
     print(f"results: {result.out}/ ({written})")
@@ -619,7 +640,9 @@ def cmd_experiment(args: argparse.Namespace) -> int:
                 )
             else:
                 what = ""
-                where = f"cap {config.env.max_episode_steps}, optimal {optimal[None]:g} steps"
+                where = f"cap {config.env.max_episode_steps}" + _optimum_text(
+                    optimal[None], ", optimal {} steps"
+                )
             print(
                 f"{config.name}: {chosen} strategies x {what}{config.runs} runs x "
                 f"{config.episodes} episodes ({where}); {done} of {total} runs already done; "
@@ -751,13 +774,21 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         f"(cap {env.max_episode_steps})"
         + ("; observation projected to (x, y), heading dropped" if projected else "")
     )
-    print(f"success rate: {result.success_rate:.1%}")
-    reached = result.successful_steps
-    if reached.size:
+    if env.is_maze:
+        print(f"success rate: {result.success_rate:.1%}")
+        reached = result.successful_steps
+        if reached.size:
+            print(
+                f"steps to goal (successful episodes): mean {reached.mean():.1f}, median "
+                f"{np.median(reached):.0f}, min {reached.min()}, max {reached.max()}"
+                + _optimum_text(optimal, "; optimal {}")
+            )
+    else:  # a task's terminated need not be a success (CartPole's is a fall): its returns
+        returns = np.array([e.episode_return for e in result.episodes])
+        cut = sum(e.truncated for e in result.episodes)
         print(
-            f"steps to goal (successful episodes): mean {reached.mean():.1f}, median "
-            f"{np.median(reached):.0f}, min {reached.min()}, max {reached.max()}; optimal "
-            f"{optimal:g}"
+            f"return per episode: mean {returns.mean():g}, min {returns.min():g}, max "
+            f"{returns.max():g}; cut by the time limit in {cut} of {len(returns)} episodes"
         )
     print(f"steps, capped episodes counted at the cap: mean {steps.mean():.1f}")
     if result.tipped:

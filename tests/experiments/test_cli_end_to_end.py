@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -390,3 +391,31 @@ def test_a_gymnasium_classic_control_experiment_runs(tmp_path: Path, capsys):
     assert not (train / "partition.png").exists()
     assert run.main(["evaluate", str(train), "--episodes", "1"]) == 0
     assert "in MountainCar-v0 (cap 40)" in capsys.readouterr().out
+
+
+def test_a_task_other_than_a_maze_is_summarised_by_its_returns(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """CartPole's ``terminated`` is a fall, so a "success rate" would count falls, and a task has
+    no known optimum ("optimal nan" was printed): train and evaluate print returns and how the
+    episodes ended instead."""
+    config = tmp_path / "cartpole.toml"
+    config.write_text(
+        '[experiment]\nname = "cp"\nruns = 1\nepisodes = 4\n\n[env]\nid = "CartPole-v1"\n\n'
+        '[[strategy]]\nname = "general"\npreset = "general"\n'
+    )
+    out = tmp_path / "agent"
+    assert run.main(["train", "--config", str(config), "--no-progress", "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert re.search(r"training general in CartPole-v1, seed \d+: up to 4 episodes\n", printed)
+    assert "return per episode: mean " in printed
+    assert re.search(r"greedy policy: return \d+ in \d+ steps \(ended by the task\)", printed)
+    for wrong in ("success", "goal", "optimal", "nan"):
+        assert wrong not in printed
+    assert run.main(["evaluate", str(out / "agent.npz"), "--episodes", "2"]) == 0
+    printed = capsys.readouterr().out
+    assert "2 greedy episodes in CartPole-v1 (cap 500)" in printed
+    assert "return per episode: mean " in printed
+    assert "cut by the time limit in 0 of 2 episodes" in printed
+    for wrong in ("success", "optimal", "nan"):
+        assert wrong not in printed
