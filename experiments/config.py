@@ -208,8 +208,9 @@ class TaskSpec:
 class ExperimentConfig:
     """A whole experiment: strategies x tasks x runs x episodes.
 
-    An experiment without tasks (no ``[env] suite``, no ``[[task]]``) runs in its one
-    environment, :attr:`env`, and its run files keep their names (``runs/<strategy>__<seed>``);
+    An experiment without tasks (no ``[env] suite``, no ``[[task]]``, and an ``[env]`` maze: an
+    ``[env]`` of another id is read as one ``[[task]]``) runs in its one environment,
+    :attr:`env`, and its run files keep their names (``runs/<strategy>__<seed>``);
     an experiment over tasks stores each task's runs in ``runs/<task>/``, and :attr:`env` is
     its first task's environment.
     """
@@ -494,6 +495,10 @@ def parse_config(
     env_table = reader.table(data, "env")
     suite, splits, tasks = reader.tasks(data, env_table, allowed_env_ids)
     env = tasks[0].env if tasks else reader.env(env_table, allowed_env_ids)
+    if not tasks and not env.is_maze:
+        # A task other than a maze is scored by its returns, never by a maze's steps and
+        # successes (CartPole's terminated is a fall): it is an experiment over that one task.
+        tasks = (TaskSpec(task_name(env), env),)
     agent = dict(reader.table(data, "agent"))
     if agent:
         _agent_check(lambda: config_from_data(agent, f"{source}: [agent]"))

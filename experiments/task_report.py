@@ -391,7 +391,8 @@ def render_markdown(
         lines += [
             "Left out of the aggregate (no normalised score: a maze without an optimum, or a "
             "return task without reference returns; give `random_return` and `solved_return` "
-            "in its `[[task]]` table): " + ", ".join(f"`{m}`" for m in missing) + ".",
+            "in its `[[task]]` table, and write an `[env]` task as one such table to give "
+            "them): " + ", ".join(f"`{m}`" for m in missing) + ".",
             "",
         ]
     lines += ["## Per task", "", f"![learning curves per task]({CURVES_FILE})", ""]

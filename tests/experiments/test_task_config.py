@@ -191,3 +191,18 @@ def test_the_shipped_comparisons_load():
     ]
     assert classic.eval_episodes == 20
     assert classic.tasks[2].env.observation_bounds is not None
+
+
+def test_an_env_other_than_a_maze_is_an_experiment_over_that_one_task():
+    """Its runs are scored by their returns (the task report), never by a maze's steps and
+    successes: CartPole's ``terminated`` is a fall, which the maze report counted as a success."""
+    config = parse_config(_with(env={"id": "CartPole-v1", "max_episode_steps": 200}))
+    assert [(t.name, t.env.id, t.env.max_episode_steps) for t in config.tasks] == [
+        ("CartPole-v1", "CartPole-v1", 200)
+    ]
+    assert config.env == config.tasks[0].env
+    as_table = parse_config(_with(task=[{"id": "CartPole-v1", "max_episode_steps": 200}]))
+    assert config.tasks == as_table.tasks
+    maze = parse_config(_with(env={"maze": "open"}))
+    assert maze.tasks == ()
+    assert maze.env.is_maze
