@@ -79,5 +79,11 @@ def test_env_with_other_actions_is_refused() -> None:
     class Env:
         action_space = spaces.Discrete(3)
 
+        def reset(self) -> None:
+            raise AssertionError("refused before any reset")
+
+        def step(self, action: int) -> None:
+            raise AssertionError("refused before any step")
+
     with pytest.raises(ValueError, match="does not match"):
         TreeAgent(BOX, ACTIONS).learn(Env(), 1)
