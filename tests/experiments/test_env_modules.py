@@ -153,6 +153,12 @@ def test_an_experiment_on_a_user_env_runs_in_spawned_workers_and_an_edit_is_not_
     runs = sorted(p.name for p in (tmp_path / "out" / "runs" / ENV_ID).glob("*.json"))
     assert len(runs) == 2, runs
     assert ENV_ID in (tmp_path / "out" / "report.md").read_text()
+    # the same runs in this one process (the serial backend), bit for bit
+    serial = ["--env-module", name, "experiment", "corridor.toml", "--out", "serial"]
+    assert _run([*serial, "--backend", "serial", "--no-progress"], tmp_path).returncode == 0
+    assert len(list((tmp_path / "out" / "runs" / ENV_ID).glob("*.csv"))) == 4
+    for csv in (tmp_path / "out" / "runs" / ENV_ID).glob("*.csv"):
+        assert csv.read_bytes() == (tmp_path / "serial" / "runs" / ENV_ID / csv.name).read_bytes()
     # without the module, the id is unknown, and the error says how to name the module
     missing = _run(argv[2:], tmp_path)
     assert missing.returncode == 2
