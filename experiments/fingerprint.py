@@ -138,10 +138,11 @@ MAX_PACKAGE_FILES = 2000
 
 @cache
 def package_fingerprint(package: str) -> str:
-    """The source fingerprint of the top-level package (every ``.py`` below it, sorted, at most
-    :data:`MAX_PACKAGE_FILES`) or the single module that defines a user's env, so that a change
-    to the env's code changes its runs' inputs (``run.py --env-module``). A module without a
-    source file (built in, compiled) is named instead."""
+    """The source fingerprint of the top-level package (every ``.py`` below its folders, a
+    namespace package's too, sorted, at most :data:`MAX_PACKAGE_FILES`) or the single module
+    that defines a user's env, so that a change to the env's code changes its runs' inputs
+    (``run.py --env-module``). A module without a source file (built in, compiled) is named
+    instead."""
     loaded = sys.modules.get(package)
     if loaded is None:
         try:
@@ -149,18 +150,21 @@ def package_fingerprint(package: str) -> str:
         except Exception:
             return f"unreadable: {package}"
     file = getattr(loaded, "__file__", None)
-    if not file or not file.endswith(".py"):
+    if hasattr(loaded, "__path__"):  # a package, also a namespace package (which has no file)
+        roots = sorted({Path(p).resolve() for p in loaded.__path__})
+        files = sorted({f for root in roots for f in root.rglob("*.py")})
+    elif file and file.endswith(".py"):
+        roots, files = [Path(file).resolve().parent], [Path(file).resolve()]
+    else:
         return f"no source: {package}"
-    path = Path(file).resolve()
-    files = sorted(path.parent.rglob("*.py")) if path.name == "__init__.py" else [path]
-    if len(files) > MAX_PACKAGE_FILES:
-        files = files[:MAX_PACKAGE_FILES]
     sources = {}
-    for source in files:
+    for source in files[:MAX_PACKAGE_FILES]:
+        root = next(r for r in roots if source.is_relative_to(r))
+        name = f"{root.name}/{source.relative_to(root)}"
         try:
-            sources[str(source.relative_to(path.parent))] = source_fingerprint(source)
+            sources[name] = source_fingerprint(source)
         except (OSError, SyntaxError, ValueError):
-            sources[str(source.relative_to(path.parent))] = "unreadable"
+            sources[name] = "unreadable"
     return digest(sources)
 
 

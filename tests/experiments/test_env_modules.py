@@ -203,3 +203,37 @@ def test_every_hostile_module_name_is_one_line_with_exit_code_2(
     assert "Traceback" not in error
     assert error.count("\n") <= 3, error  # one line (argparse's own errors add its usage)
     assert "--env-module" in error.strip().splitlines()[-1], error
+
+
+@pytest.mark.parametrize("layout", ["module", "package", "namespace"])
+def test_a_user_package_s_fingerprint_follows_its_statements_not_its_comments(
+    layout: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The env's source is read as the code fingerprint reads ours: a single module, every module
+    of a package, or of a namespace package (a folder without ``__init__.py``, which has no
+    ``__file__``)."""
+    from experiments.fingerprint import package_fingerprint
+
+    name = f"fp_{layout}_{os.getpid()}"
+    if layout == "module":
+        source = tmp_path / f"{name}.py"
+    else:
+        (tmp_path / name).mkdir()
+        if layout == "package":
+            (tmp_path / name / "__init__.py").write_text("")
+        source = tmp_path / name / "envs.py"
+    monkeypatch.syspath_prepend(str(tmp_path))
+
+    def fingerprint(text: str) -> str:
+        source.write_text(text)
+        package_fingerprint.cache_clear()
+        for module in [m for m in sys.modules if m == name or m.startswith(f"{name}.")]:
+            del sys.modules[module]
+        return package_fingerprint(name)
+
+    first = fingerprint("REWARD = -1.0\n")
+    assert first == fingerprint("REWARD = -1.0  # per step\n\n")
+    assert first != fingerprint("REWARD = -2.0\n")
+    package_fingerprint.cache_clear()
+    for module in [m for m in sys.modules if m == name or m.startswith(f"{name}.")]:
+        del sys.modules[module]
