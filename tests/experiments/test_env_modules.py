@@ -5,6 +5,7 @@ Bad names and modules are one line naming the option and the module."""
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import subprocess
 import sys
@@ -159,6 +160,12 @@ def test_an_experiment_on_a_user_env_runs_in_spawned_workers_and_an_edit_is_not_
     assert len(list((tmp_path / "out" / "runs" / ENV_ID).glob("*.csv"))) == 4
     for csv in (tmp_path / "out" / "runs" / ENV_ID).glob("*.csv"):
         assert csv.read_bytes() == (tmp_path / "serial" / "runs" / ENV_ID / csv.name).read_bytes()
+    if importlib.util.find_spec("ray") is not None:  # Ray's workers import the module too
+        on_ray = ["--env-module", name, "experiment", "corridor.toml", "--out", "ray"]
+        result = _run([*on_ray, "--backend", "ray", "--workers", "2", "--no-progress"], tmp_path)
+        assert result.returncode == 0, result.stderr
+        for csv in (tmp_path / "out" / "runs" / ENV_ID).glob("*.csv"):
+            assert csv.read_bytes() == (tmp_path / "ray" / "runs" / ENV_ID / csv.name).read_bytes()
     # without the module, the id is unknown, and the error says how to name the module
     missing = _run(argv[2:], tmp_path)
     assert missing.returncode == 2
