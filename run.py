@@ -94,8 +94,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="run.py", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("-v", "--verbose", action="store_true", help="debug logging")
-    _add_allow_env(parser)
-    _add_env_module(parser)
+    _add_env_sources(parser)
     parser.set_defaults(
         command=None,
         config=DEFAULT_CONFIG,
@@ -380,26 +379,25 @@ def _add_transfer_parser(sub: Any) -> None:
     _add_output_options(transfer, "results/<name>/")
 
 
-def _add_allow_env(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--allow-env",
-        action="append",
-        metavar="ID",
-        help="also accept this registered Gymnasium id in experiment files (repeatable); "
-        "by default only this project's ids and Gymnasium's own are, and never an import "
-        "path (module:Id)",
-    )
+ENV_SOURCE_OPTIONS = {
+    "--allow-env": (
+        "ID",
+        "also accept this registered Gymnasium id in experiment files (repeatable); by default "
+        "only this project's ids and Gymnasium's own are, and never an import path (module:Id)",
+    ),
+    "--env-module": (
+        "MODULE",
+        "import this module first, here and in every worker, and accept the Gymnasium ids it "
+        "registers (repeatable): your own envs, for experiment files and --config; it must be "
+        "importable (on PYTHONPATH, or installed)",
+    ),
+}
+"""The options that admit environments beyond this project's and Gymnasium's: metavar, help."""
 
 
-def _add_env_module(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--env-module",
-        action="append",
-        metavar="MODULE",
-        help="import this module first, here and in every worker, and accept the Gymnasium "
-        "ids it registers (repeatable): your own envs, for experiment files and --config; "
-        "it must be importable (on PYTHONPATH, or installed)",
-    )
+def _add_env_sources(parser: argparse.ArgumentParser) -> None:
+    for flag, (metavar, text) in ENV_SOURCE_OPTIONS.items():
+        parser.add_argument(flag, action="append", metavar=metavar, help=text)
 
 
 def _add_config_source(parser: argparse.ArgumentParser) -> None:
