@@ -11,7 +11,9 @@ section 12.7, the algorithm box "Sarsa(lambda) with binary features and linear f
 approximation"): the defaults are their Mountain Car settings, 8 tilings, step size
 ``alpha / tilings`` with alpha = 0.5, lambda = 0.9, epsilon = 0 with weights at 0 (optimistic
 when every reward is negative). ``gamma`` defaults to the learner's 0.99 (the book uses 1 on
-Mountain Car).
+Mountain Car). Where rewards are positive, zero weights are pessimistic and epsilon 0 never
+revises the first greedy action: give ``epsilon`` (0.1 solved CartPole on 10 of 10 dev seeds
+and 10 of 10 held-out runs, against 4 and 5 of 10 with 0; ``docs/results.md``, part 41).
 
 Tiles are numbered on first sight by a table of at most ``max_features`` (2^20) entries
 (Sutton's ``tiles3`` index hash table, without its hashing: a full table is an error, never a
