@@ -244,3 +244,21 @@ def test_a_user_package_s_fingerprint_follows_its_statements_not_its_comments(
     package_fingerprint.cache_clear()
     for module in [m for m in sys.modules if m == name or m.startswith(f"{name}.")]:
         del sys.modules[module]
+
+
+def test_the_shipped_example_of_a_user_env_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    """README's command for your own envs: ``examples/corridor_envs.py`` registers two corridors
+    and ``examples/corridor_tasks.toml`` runs them beside CartPole (here one run, 3 episodes)."""
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join([str(ROOT / "examples"), str(ROOT)]))
+    argv = [
+        "--env-module",
+        "corridor_envs",
+        "experiment",
+        str(ROOT / "examples/corridor_tasks.toml"),
+    ]
+    argv += ["--runs", "1", "--episodes", "3", "--out", "out", "--no-progress"]
+    result = _run(argv, tmp_path)
+    assert result.returncode == 0, result.stderr
+    for task in ("Corridor-v0", "LongCorridor-v0", "CartPole-v1"):
+        assert len(list((tmp_path / "out" / "runs" / task).glob("*.json"))) == 2, task
+    assert "LongCorridor-v0" in (tmp_path / "out" / "report.md").read_text()
