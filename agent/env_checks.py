@@ -275,8 +275,11 @@ def _plain_step(
     microsecond. None means "check closely", not "invalid"."""
     if type(terminated) is not bool or type(truncated) is not bool or type(info) is not dict:
         return None
-    if type(reward) not in _PLAIN_REWARDS:
+    kind_of_reward = type(reward)
+    if kind_of_reward not in _PLAIN_REWARDS:
         return None
+    if kind_of_reward is np.float32:  # (compared with the bound, it would cast 1e100 to float32:
+        reward = float(reward)  # an overflow warning every step)
     if not -MAX_REWARD_MAGNITUDE <= reward <= MAX_REWARD_MAGNITUDE:  # NaN fails too
         return None
     if type(obs) is np.ndarray:

@@ -140,13 +140,16 @@ def test_valid_values_of_every_kind_pass_unchanged() -> None:
     kinds = [
         (np.array([0.2, 0.3]), -1, np.bool_(False), 0, {"x": 1}),
         ([0.2, 0.3], np.float32(-0.5), False, np.int64(1), {}),
+        (np.array([0.2, 0.3]), np.float32(-0.5), False, False, {}),  # (BipedalWalker's kind)
         (np.array([1, 2], np.int64), np.array(2.5), True, False, {}),
         (np.array([5.0, -7.0], np.float32), MAX_REWARD_MAGNITUDE, False, False, {}),
     ]
     for values in kinds:
         checked = CheckedEnv(Fixed(values), 2)
         assert checked.reset(seed=0)[0] is values[0]
-        result = checked.step(0)
+        with warnings.catch_warnings():  # a float32 reward once cast the bound 1e100 to
+            warnings.simplefilter("error")  # float32: an overflow warning on every step
+            result = checked.step(0)
         assert all(a is b for a, b in zip(result, values, strict=True))
         assert checked.observation_space is BOX  # other attributes are the env's own
 
