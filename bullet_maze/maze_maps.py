@@ -2,7 +2,8 @@
 
 A ``maze_map`` is a list of rows, top row first: ``1`` a wall cell, ``0`` a free cell, ``"g"``
 the goal, ``"r"`` the reset (start) cell, ``"c"`` a cell that may be either (Gymnasium-Robotics'
-``maps.py``). Cell (row i, column j) becomes the square of side ``cell_size`` whose centre is
+``maps.py``); a 2-D numpy array of integers, or of the strings ``np.array`` makes of a map with
+letters, is read as the same list. Cell (row i, column j) becomes the square of side ``cell_size`` whose centre is
 x = (j + 1/2) cell_size, y = (rows - i - 1/2) cell_size, as Gymnasium-Robotics places it (row 0
 at the top). A ring of wall cells around the whole map is left out: the arena's own walls take
 its place. Wall cells are merged into as few boxes as row-by-row runs stacked into rectangles
@@ -25,6 +26,8 @@ from __future__ import annotations
 from collections import deque
 from collections.abc import Sequence
 from typing import Any
+
+import numpy as np
 
 from bullet_maze.layout_types import MazeLayout, Wall
 from bullet_maze.validation import validate_layout
@@ -159,8 +162,10 @@ def layout_from_maze_map(
 
 
 def _cells(maze_map: Any, source: str) -> list[list[Any]]:
+    maze_map = _from_array(maze_map, source)
     if not isinstance(maze_map, list | tuple) or not maze_map:
         raise ValueError(f"{source}: a maze map must be a non-empty list of rows")
+    maze_map = [_from_array(row, source) for row in maze_map]
     if not all(isinstance(row, list | tuple) for row in maze_map):
         raise ValueError(f"{source}: every row of a maze map must be a list")
     cols = len(maze_map[0])
@@ -176,6 +181,8 @@ def _cells(maze_map: Any, source: str) -> list[list[Any]]:
             known = (type(value) is int and value in (0, 1)) or (
                 isinstance(value, str) and value in (_G, _R, _C)
             )
+            if not known and isinstance(value, np.integer):  # (a row of numpy ints)
+                known = bool(value in (0, 1))
             if not known:
                 raise ValueError(
                     f"{source}: cell ({i}, {j}) is {value!r}: expected 1 (wall), 0 (free), "
@@ -183,7 +190,27 @@ def _cells(maze_map: Any, source: str) -> list[list[Any]]:
                 )
     if all(value == _W for row in maze_map for value in row):
         raise ValueError(f"{source}: the map has no free cell")
-    return [list(row) for row in maze_map]
+    return [[int(v) if isinstance(v, np.integer) else v for v in row] for row in maze_map]
+
+
+def _from_array(value: Any, source: str) -> Any:
+    """A numpy array of a map (2-D) or a row (1-D) as lists: integers as ints, and the strings
+    ``np.array`` makes of a map with letters (``"0"``, ``"1"``, ``"g"``) as the map's cells.
+    Anything else is returned as it is, for :func:`_cells` to judge."""
+    if not isinstance(value, np.ndarray):
+        return value
+    if value.ndim not in (1, 2) or value.dtype.kind not in "iuUO":
+        raise ValueError(
+            f"{source}: a maze map given as an array must be 2-D of integers or strings, got "
+            f"shape {value.shape} of {value.dtype}"
+        )
+    cells = value.tolist()
+    if value.dtype.kind == "U":
+        digits = {"0": 0, "1": 1}
+        if value.ndim == 1:
+            return [digits.get(cell, cell) for cell in cells]
+        return [[digits.get(cell, cell) for cell in row] for row in cells]
+    return cells
 
 
 def _positive(value: Any, name: str, source: str) -> float:

@@ -129,9 +129,36 @@ def test_import_map_command_takes_the_start_and_goal_cells(
         ([[0, 1, "g"]], {}, r"no free cell connects to the goal cell \(0, 2\)"),
         ([[0, 1, "g"]], {"start_cell": (0, 0)}, r"cannot be reached"),
         ([["g", 0]], {"robot_radius": 30.0}, r"overlaps a wall"),
+        (np.array([[1.0, 0.0]]), {}, r"2-D of integers or strings, got shape \(1, 2\) of float64"),
+        (np.zeros((2, 2, 2), int), {}, r"got shape \(2, 2, 2\) of int64"),
+        (np.array([[True, False]]), {}, r"got shape \(1, 2\) of bool"),
+        (np.array([[1, 2]]), {}, r"cell \(0, 1\) is 2"),
+        (np.array([["1", "G"]]), {}, r"cell \(0, 1\) is 'G'"),
+        ([[np.int64(0), np.int64(7)]], {}, r"cell \(0, 1\) is np.int64\(7\)"),
     ],
 )
 def test_bad_maps_are_refused_by_name(maze_map: object, kwargs: dict, match: str) -> None:
     with pytest.raises(ValueError, match=match) as err:
         layout_from_maze_map(maze_map, source="my map", **kwargs)  # type: ignore[arg-type]
     assert "my map" in str(err.value)
+
+
+def test_a_map_as_a_numpy_array_or_with_numpy_rows_is_the_same_layout() -> None:
+    """A map loaded with numpy (``np.loadtxt``, ``np.array`` of a map with letters, whose cells
+    become strings) gives the layout of the same map as lists, and the caller's rows are left
+    as they were."""
+    rows = [[1, 1, 1, 1, 1], [1, "r", 0, "g", 1], [1, 0, 1, 0, 1], [1, 1, 1, 1, 1]]
+    expected = layout_from_maze_map(rows)
+    assert layout_from_maze_map(np.array(rows)) == expected  # dtype <U21: "1", "r", ...
+    numbers = np.array([[1, 1, 1, 1, 1], [1, 0, 0, 0, 1], [1, 0, 1, 0, 1], [1, 1, 1, 1, 1]])
+    as_lists = layout_from_maze_map(numbers.tolist(), goal_cell=(1, 3), start_cell=(1, 1))
+    assert layout_from_maze_map(numbers, goal_cell=(1, 3), start_cell=(1, 1)) == as_lists
+    assert as_lists == expected
+    mixed = [list(np.int64(v) if v in (0, 1) else v for v in row) for row in rows]
+    copy = [list(row) for row in mixed]
+    assert layout_from_maze_map(mixed) == expected
+    assert mixed == copy
+    assert type(mixed[0][0]) is np.int64
+    assert layout_from_maze_map([np.array(row) for row in numbers], goal_cell=(1, 3)) == (
+        layout_from_maze_map(numbers.tolist(), goal_cell=(1, 3))
+    )
