@@ -722,7 +722,13 @@ def _print_experiment_summary(report: Any) -> None:
 
 
 def _print_task_summary(report: Any) -> None:
-    print(f"\n{len(report.tasks)} tasks with finished runs; aggregate over tasks and runs:")
+    if report.aggregates:
+        print(f"\n{len(report.tasks)} tasks with finished runs; aggregate over tasks and runs:")
+    else:
+        print(
+            f"\n{len(report.tasks)} tasks with finished runs; no aggregate over them (no task "
+            "has a normalised score; the report says why): see its per-task tables"
+        )
     width = max([len("strategy"), *(len(row.strategy) for row in report.aggregates)])
     group = None
     for row in report.aggregates:

@@ -258,6 +258,12 @@ class ExperimentConfig:
     """File the experiment was read from (filled in by :func:`load_config`)."""
 
     @property
+    def final_episodes(self) -> int:
+        """How many episodes a run's final performance is the mean of: :attr:`final_window`,
+        or every episode of a run shorter than that (the number the reports name)."""
+        return min(self.final_window, self.episodes)
+
+    @property
     def baseline_name(self) -> str:
         """The baseline strategy's name (the first strategy when none is set)."""
         return self.baseline if self.baseline is not None else self.strategies[0].name

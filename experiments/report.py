@@ -71,7 +71,7 @@ def write_report(
         left_out = f"; left out: {listing(excluded)}" if excluded else ""
         raise ValueError(f"{out_dir}: no finished runs to report{left_out}")
     optimal = _optimal_steps(results)
-    window, final_window = config.smoothing_window, config.final_window
+    window, final_window = config.smoothing_window, config.final_episodes
     baseline_runs = results.get(config.baseline_name)
     baseline_final = (
         None
@@ -255,7 +255,7 @@ def render_markdown(
 ) -> str:
     """The report's Markdown text."""
     cap = config.env.max_episode_steps
-    window, final_window = config.smoothing_window, config.final_window
+    window, final_window = config.smoothing_window, config.final_episodes
     episodes = config.episodes
     lines = [
         f"# {config.name}",

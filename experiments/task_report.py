@@ -262,7 +262,7 @@ def _maze_table(summary: TaskSummary, config: ExperimentConfig) -> list[str]:
     evaluated = config.eval_episodes > 0
     optimal = summary.optimal_steps
     head = (
-        f"| strategy | runs | final steps (last {config.final_window}) | final / optimal | "
+        f"| strategy | runs | final steps (last {config.final_episodes}) | final / optimal | "
         "AUC (mean steps per episode) | AUC / optimal | success rate | "
         "episodes to convergence (median) | runs converged | "
         f"P(improvement) over {config.baseline_name} |"
@@ -301,10 +301,10 @@ def _return_table(summary: TaskSummary, config: ExperimentConfig) -> list[str]:
     scored_by = (
         f"greedy return ({config.eval_episodes} episodes)"
         if evaluated
-        else (f"training return (last {config.final_window})")
+        else (f"training return (last {config.final_episodes})")
     )
     lines = [
-        f"| strategy | runs | training return (last {config.final_window}), mean | "
+        f"| strategy | runs | training return (last {config.final_episodes}), mean | "
         f"greedy return ({config.eval_episodes} episodes), mean | runs solved ({scored_by} >= "
         f"{'n/a' if refs is None else f'{refs.solved_return:g}'}) | normalised score, mean | "
         f"P(improvement) over {config.baseline_name} |",
@@ -364,7 +364,9 @@ def render_markdown(
         "95% stratified bootstrap interval (runs resampled within each task, "
         f"{aggregate.RESAMPLES:,} resamples, seed {seed}); P(improvement): mean over tasks of "
         "the probability that a run of the strategy scores better than a run of the baseline "
-        "on the same task, with a 95% interval (Agarwal et al., NeurIPS 2021).",
+        "on the same task, with a 95% interval (Agarwal et al., NeurIPS 2021)."
+        if grouped
+        else "None: no task has a normalised score.",
         "",
     ]
     for group, tasks in grouped.items():
@@ -404,7 +406,7 @@ def render_markdown(
 
 
 def _definitions(config: ExperimentConfig, summaries: Sequence[TaskSummary]) -> list[str]:
-    window, final_window = config.smoothing_window, config.final_window
+    window, final_window = config.smoothing_window, config.final_episodes
     lines = ["## Definitions", ""]
     if any(s.kind == "maze" for s in summaries):
         lines += [
@@ -429,17 +431,19 @@ def _definitions(config: ExperimentConfig, summaries: Sequence[TaskSummary]) -> 
             if config.eval_episodes
             else f"its mean training return over its last {final_window} episodes"
         )
-        lines += [
+        lines.append(
             f"- **normalised score** of a return task's run: (R - random) / (solved - random), "
             f"R {scored}; 0 is a uniformly random policy, 1 the solved threshold. "
-            "**runs solved**: runs whose R reaches the solved threshold.",
-            "- reference returns: "
-            + "; ".join(
-                f"`{s.task.name}`: {s.references.source}"
-                for s in summaries
-                if s.references is not None
-            ),
+            "**runs solved**: runs whose R reaches the solved threshold."
+        )
+        sources = [
+            f"`{s.task.name}`: {s.references.source}" for s in summaries if s.references is not None
         ]
+        lines.append(
+            "- reference returns: " + "; ".join(sources)
+            if sources
+            else "- reference returns: none (no task gives `random_return` and `solved_return`)"
+        )
     lines.append("")
     return lines
 

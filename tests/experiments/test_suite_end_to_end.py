@@ -298,3 +298,46 @@ def test_a_classic_control_task_list(tmp_path: Path):
     aggregate = _rows(out / "aggregate.csv")
     assert {r["group"] for r in aggregate} == {"return"}
     assert all(r["tasks"] == "2" for r in aggregate)
+
+
+UNSCORED = """
+[experiment]
+name = "unscored"
+runs = 2
+episodes = 3
+eval_episodes = 1
+
+[[task]]
+id = "MountainCar-v0"
+max_episode_steps = 20
+
+[[task]]
+id = "FrozenLake-v1"
+params = { is_slippery = false }
+
+[[strategy]]
+name = "eps"
+exploration = "epsilon-greedy"
+"""
+
+
+def test_tasks_without_references_and_runs_shorter_than_the_final_window(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+):
+    """No task has reference returns, and 3 episodes are fewer than the default final window
+    of 100: the report and the summary say there is no aggregate (not an empty table or an
+    empty list of sources), and name the 3 episodes the final values are the mean of."""
+    path = tmp_path / "unscored.toml"
+    path.write_text(UNSCORED)
+    out = tmp_path / "out"
+    assert _experiment(path, out) == 0
+    printed = capsys.readouterr().out
+    assert "no aggregate over them" in printed
+    assert "aggregate over tasks and runs:" not in printed
+    text = (out / "report.md").read_text()
+    assert "None: no task has a normalised score." in text
+    assert "Interquartile mean" not in text
+    assert "training return (last 3), mean" in text
+    assert "last 100" not in text
+    assert "- reference returns: none" in text
+    assert not text.rstrip().endswith("reference returns:")
