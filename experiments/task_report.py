@@ -220,6 +220,16 @@ def _num(value: float, digits: int = 2) -> str:
     return "n/a" if not math.isfinite(value) else f"{value:.{digits}f}"
 
 
+def _return_num(value: float) -> str:
+    """A mean return with at least three significant digits and one decimal: Blackjack's mean of
+    -0.0523 is not "-0.1", and LunarLander's -166.3 stays as it is."""
+    if not math.isfinite(value):
+        return "n/a"
+    magnitude = abs(value)
+    digits = 1 if magnitude >= 10 or magnitude == 0 else 2 - math.floor(math.log10(magnitude))
+    return f"{value:.{min(max(digits, 1), 6)}f}"
+
+
 def _estimate(estimate: aggregate.Estimate | None, digits: int = 2) -> str:
     if estimate is None:
         return "-"
@@ -311,15 +321,18 @@ def _return_table(summary: TaskSummary, config: ExperimentConfig) -> list[str]:
         "|---|---:|---:|---:|---:|---:|---:|",
     ]
     for entry in summary.strategies:
-        greedy = "-" if entry.greedy_return is None else f"{np.mean(entry.greedy_return):.1f}"
+        greedy = (
+            "-" if entry.greedy_return is None else _return_num(float(np.mean(entry.greedy_return)))
+        )
         solved = (
             "n/a"
             if refs is None
             else f"{int(np.sum(entry.score_return >= refs.solved_return))}/{entry.runs}"
         )
         score = entry.scores.get("normalised_return")
+        final = _return_num(float(np.mean(entry.final_return)))
         lines.append(
-            f"| {entry.strategy} | {entry.runs} | {np.mean(entry.final_return):.1f} | {greedy} | "
+            f"| {entry.strategy} | {entry.runs} | {final} | {greedy} | "
             f"{solved} | {'n/a' if score is None else _num(float(np.mean(score)))} | "
             f"{_improvement_on_task(summary, config, entry.strategy)} |"
         )

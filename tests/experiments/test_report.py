@@ -69,3 +69,24 @@ def test_report_names_the_planned_runs_not_run_yet(small_config, standins, tmp_p
     report = write_report(small_config, tmp_path, task=standins.fake_run)
     assert report.not_run == ()
     assert "Runs not run yet" not in report.markdown.read_text()
+
+
+def test_a_tasks_mean_returns_keep_three_significant_digits() -> None:
+    """A task whose returns are fractions (Blackjack's are about -0.05) is not rounded to one
+    decimal, where every strategy would read "-0.1"; returns of 10 or more keep one decimal."""
+    from experiments.task_report import _return_num
+
+    cases = {
+        -0.0523: "-0.0523",
+        -0.0777: "-0.0777",
+        0.5: "0.500",
+        5.8: "5.80",
+        -3.75: "-3.75",
+        19.3: "19.3",
+        -166.34: "-166.3",
+        1000.0: "1000.0",
+        0.0: "0.0",
+        1e-9: "0.000000",
+        float("nan"): "n/a",
+    }
+    assert {value: _return_num(value) for value in cases} == cases
