@@ -98,8 +98,17 @@ def observation_bounds(
             "pass finite bounds=(low, high) to the agent"
         )
     if not (low < high).all():
+        d = int(np.flatnonzero(~(low < high))[0])
+        lo, hi = float(low[d]), float(high[d])
+        what = (
+            f"low = high = {lo!r} (a constant input: drop it from the observation, or give "
+            "the agent bounds=(low, high) that are wider there)"
+            if lo == hi
+            else f"low {lo!r} > high {hi!r}"
+        )
         raise ValueError(
-            f"{source} must have low < high, got low={low.tolist()}, high={high.tolist()}"
+            f"{source} must have low < high in every dimension; dimension {d} has {what} "
+            f"(low={low.tolist()}, high={high.tolist()})"
         )
     return low.tolist(), high.tolist()
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from gymnasium import spaces
 
-from agent import GridAgent, TreeAgent, TreeConfig
+from agent import GridAgent, TileCodingAgent, TreeAgent, TreeConfig
 
 BOX = spaces.Box(0.0, 1.0, shape=(2,), dtype=np.float32)
 ACTIONS = spaces.Discrete(4)
@@ -33,8 +33,23 @@ def test_unbounded_observation_needs_bounds_on_a_grid() -> None:
     assert agent.leaf_info(0).low == (-1.0, -2.0)
     with pytest.raises(ValueError, match="2 lows and 2 highs"):
         TreeAgent(unbounded, ACTIONS, bounds=([0.0], [1.0]))
-    with pytest.raises(ValueError, match="low < high"):
+    with pytest.raises(ValueError, match=r"low < high .*dimension 1 has low = high = 1\.0"):
         TreeAgent(unbounded, ACTIONS, bounds=([0.0, 1.0], [1.0, 1.0]))
+    with pytest.raises(ValueError, match=r"dimension 0 has low 2\.0 > high 1\.0"):
+        TreeAgent(unbounded, ACTIONS, bounds=([2.0, 0.0], [1.0, 1.0]))
+
+
+def test_a_constant_input_is_refused_naming_its_dimension_and_the_remedy() -> None:
+    """A Box that declares one input constant (low == high there) is refused by every kind of
+    agent with the dimension and what to do, not only "low < high"."""
+    constant = spaces.Box(np.array([0.0, 3.0, 0.0]), np.array([1.0, 3.0, 1.0]), dtype=np.float64)
+    for make in (
+        lambda: TreeAgent(constant, ACTIONS),
+        lambda: GridAgent(constant, ACTIONS, resolution=4),
+        lambda: TileCodingAgent(constant, ACTIONS),
+    ):
+        with pytest.raises(ValueError, match=r"dimension 1 has low = high = 3\.0 \(a constant"):
+            make()
 
 
 @pytest.mark.parametrize(
