@@ -417,5 +417,6 @@ def test_a_task_other_than_a_maze_is_summarised_by_its_returns(
     assert "2 greedy episodes in CartPole-v1 (cap 500)" in printed
     assert "return per episode: mean " in printed
     assert "cut by the time limit in 0 of 2 episodes" in printed
-    for wrong in ("success", "optimal", "nan"):
+    assert re.search(r"\n[\d,]+ steps/s\n", printed)
+    for wrong in ("success", "optimal", "nan", "collisions"):
         assert wrong not in printed
