@@ -3,11 +3,11 @@
 A ``maze_map`` is a list of rows, top row first: ``1`` a wall cell, ``0`` a free cell, ``"g"``
 the goal, ``"r"`` the reset (start) cell, ``"c"`` a cell that may be either (Gymnasium-Robotics'
 ``maps.py``); a 2-D numpy array of integers, or of the strings ``np.array`` makes of a map with
-letters, is read as the same list. Cell (row i, column j) becomes the square of side ``cell_size`` whose centre is
-x = (j + 1/2) cell_size, y = (rows - i - 1/2) cell_size, as Gymnasium-Robotics places it (row 0
-at the top). A ring of wall cells around the whole map is left out: the arena's own walls take
-its place. Wall cells are merged into as few boxes as row-by-row runs stacked into rectangles
-allow.
+letters, is read as the same list. Cell (row i, column j) becomes the square of side
+``cell_size`` whose centre is x = (j + 1/2) cell_size, y = (rows - i - 1/2) cell_size, as
+Gymnasium-Robotics places it (row 0 at the top). A ring of wall cells around the whole map is
+left out: the arena's own walls take its place. Wall cells are merged into as few boxes as
+row-by-row runs stacked into rectangles allow.
 
 Gymnasium-Robotics draws a goal and a start among the free cells at every reset; a layout has
 one of each: the ``"g"`` cell (else the one ``"c"`` cell, else ``goal_cell``), and the ``"r"``
