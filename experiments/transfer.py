@@ -25,6 +25,7 @@ agent retrained, a robot file edited, other episodes) refused by name, never mix
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import json
 import re
@@ -48,6 +49,7 @@ from experiments.transfer_cell import (
     cell_inputs,
     cell_seed,
     evaluate_cell,
+    robot_label,
     safe_name,
 )
 from experiments.transfer_state import (
@@ -173,6 +175,16 @@ def check_conditions(
     for key, items in (("robots", robots), ("modes", modes), ("levels", levels)):
         if len(set(items)) != len(items):
             raise ConfigError(f"{at(key)}: a name is given twice ({list(items)})")
+    labels: dict[str, str] = {}
+    for robot in robots:  # a cell and a report row are named by the robot's file stem
+        label = robot_label(robot)
+        if label in labels:
+            raise ConfigError(
+                f"{at('robots')}: robots {labels[label]!r} and {robot!r} would both be named "
+                f"{label!r} in cell names and the report, and their cells would collide; give "
+                "one of them a file of another name"
+            )
+        labels[label] = robot
     return Conditions(
         tuple(robots), tuple(modes), tuple(layouts) if layouts is not None else None, tuple(levels)
     )
@@ -404,7 +416,6 @@ def condition_env(agent: TransferAgent, condition: Condition, cap: int | None) -
     """The environment of a cell: the agent's training environment with the condition's robot
     and mode, its perturbations replaced by the level's (``train``: as trained)."""
     from bullet_maze.perturbations import NAMES, level_settings
-    from bullet_maze.robots import resolve_robot
 
     env = agent.env
     cap = cap if cap is not None else env.max_episode_steps
@@ -412,16 +423,10 @@ def condition_env(agent: TransferAgent, condition: Condition, cap: int | None) -
         return dataclasses.replace(env, max_episode_steps=cap)
     params = {k: v for k, v in env.params.items() if k not in NAMES}
     observation = str(params.get("observation", "pose"))
-    drive = resolve_robot(condition.robot).drive
-    if drive is None:
-        raise ConfigError(
-            f"robot {condition.robot!r}: a bare URDF declares no drive, which the perturbation "
-            "levels depend on; give a robot file (.toml) with its drive"
-        )
     settings = level_settings(
         condition.level,
         mode=condition.mode,
-        drive=drive,
+        drive=_drive_of(str(condition.robot)),
         lidar=observation.endswith("lidar"),
         revert_on_collision=bool(params.get("revert_on_collision", True)),
     )
@@ -429,6 +434,21 @@ def condition_env(agent: TransferAgent, condition: Condition, cap: int | None) -
     return dataclasses.replace(
         env, robot=condition.robot, mode=condition.mode, params=params, max_episode_steps=cap
     )
+
+
+def _drive_of(robot: str) -> str:
+    """The drive the perturbation levels depend on (a bare URDF's detected as the env does,
+    once per version of the file)."""
+    path = Path(robot)
+    stamp = path.stat().st_mtime_ns if robot.endswith(".urdf") and path.is_file() else None
+    return _detected_drive(robot, stamp)
+
+
+@functools.cache
+def _detected_drive(robot: str, stamp: int | None) -> str:
+    from bullet_maze.robots import robot_drive
+
+    return robot_drive(robot)
 
 
 def plan_cells(

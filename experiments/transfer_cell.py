@@ -49,6 +49,12 @@ class TransferAgent:
     n_actions: int
 
 
+def robot_label(robot: str) -> str:
+    """The name a robot goes by in cell names and the report: its file stem (``husky`` for the
+    shipped robot, ``r2d2`` for ``.../r2d2.urdf``), made safe for a file name."""
+    return safe_name(Path(robot).stem)
+
+
 @dataclass(frozen=True)
 class Condition:
     """One evaluation condition of an agent."""
@@ -60,7 +66,7 @@ class Condition:
     @property
     def name(self) -> str:
         """``<robot>__<mode>__<level>`` (the robot's file stem for a path)."""
-        return f"{safe_name(Path(self.robot).stem)}__{self.mode}__{self.level}"
+        return f"{robot_label(self.robot)}__{self.mode}__{self.level}"
 
 
 @dataclass(frozen=True)

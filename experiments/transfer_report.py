@@ -23,7 +23,7 @@ import numpy as np
 
 from experiments import store
 from experiments.statistics import bootstrap_ci
-from experiments.transfer_cell import TransferAgent
+from experiments.transfer_cell import TransferAgent, robot_label
 from experiments.transfer_state import (
     TRAIN_LEVEL,
     TransferSpec,
@@ -132,7 +132,7 @@ def cell_rows(state: TransferState) -> list[CellRow]:
                 cell.agent.group,
                 cell.agent.key,
                 Path(str(cell.agent.env.maze)).stem,
-                Path(cell.condition.robot).stem,
+                robot_label(cell.condition.robot),
                 cell.condition.mode,
                 cell.condition.level,
                 cell.episodes,
@@ -226,7 +226,7 @@ def write_transfer_report(
         ),
     )
     missing = [
-        (Path(item.condition.robot).stem, item.condition.mode)
+        (robot_label(item.condition.robot), item.condition.mode)
         for item in state.skipped
         if item.condition.level != TRAIN_LEVEL
     ]

@@ -7,7 +7,7 @@
 * ``drives``: holonomic, differential and Ackermann drives, each with its exact kinematic model
   and its dynamic controller;
 * ``robot``: ``Robot`` (a body and its drive) and ``make_robot``, which also detects the drive
-  of a bare URDF.
+  of a bare URDF (``robot_drive`` reads it without an env).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from bullet_maze.robots.drives import (
     HolonomicDrive,
     wrap_angle,
 )
-from bullet_maze.robots.robot import Robot, RobotState, make_robot
+from bullet_maze.robots.robot import Robot, RobotState, make_robot, robot_drive
 from bullet_maze.robots.spec import (
     DRIVES,
     RobotSpec,
@@ -49,5 +49,6 @@ __all__ = [
     "load_robot_spec",
     "make_robot",
     "resolve_robot",
+    "robot_drive",
     "wrap_angle",
 ]

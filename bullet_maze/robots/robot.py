@@ -279,6 +279,19 @@ def make_robot(
     return Robot(spec, body, drive)
 
 
+def robot_drive(robot: str | Path | RobotSpec) -> str:
+    """The drive of a robot (``Drive.kind``): a robot file's own, or the one :func:`make_robot`
+    detects for a bare URDF, read by loading it once into a throwaway pybullet client."""
+    spec = resolve_robot(robot)
+    if spec.drive is not None:
+        return spec.drive
+    client = pb.connect(pb.DIRECT)
+    try:
+        return make_robot(spec, client).drive.kind
+    finally:
+        pb.disconnect(physicsClientId=client)
+
+
 def _check_movable(spec: RobotSpec, body: Body, drive: Drive) -> None:
     if body.mass <= 0.0:
         raise ValueError(

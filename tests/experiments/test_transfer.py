@@ -404,6 +404,51 @@ def test_a_robot_that_tips_over_is_counted_at_the_cap_and_named(trained: Path, t
     assert "tipped" in header
 
 
+def test_two_robots_of_one_file_name_are_refused_before_their_cells_collide(tmp_path: Path):
+    """Cells and report rows are named by the robot's file stem: the shipped ``husky`` and a
+    user's ``.../husky.urdf`` would share every cell name (the second cell was refused mid-run
+    as "its inputs changed"). The grid is refused at once, naming both."""
+    urdf = Path(pybullet_data.getDataPath()) / "husky" / "husky.urdf"
+    data = copy.deepcopy(SPEC)
+    data["conditions"]["robots"] = ["husky", str(urdf)]
+    with pytest.raises(ConfigError, match=r"\[conditions\] robots: robots 'husky' and") as error:
+        parse_spec(data, "tiny_transfer.toml")
+    assert f"{str(urdf)!r} would both be named 'husky'" in str(error.value)
+    renamed = tmp_path / "my_husky.urdf"
+    renamed.write_text(urdf.read_text().replace('filename="', f'filename="{urdf.parent}/'))
+    data["conditions"]["robots"] = ["husky", str(renamed)]
+    assert parse_spec(data, "tiny_transfer.toml").conditions.robots == ("husky", str(renamed))
+
+
+def test_a_bare_urdf_runs_at_every_level_with_the_drive_the_env_detects(
+    trained: Path, tmp_path: Path
+):
+    """A bare URDF declares no drive; the perturbation levels need one. It is read off the
+    joints as the env does (pybullet's husky: differential), where it used to be refused."""
+    from bullet_maze.perturbations import level_settings
+    from bullet_maze.robots import robot_drive
+    from experiments.transfer import condition_env
+
+    urdf = str(Path(pybullet_data.getDataPath()) / "husky" / "husky.urdf")
+    assert robot_drive(urdf) == "differential"
+    assert robot_drive("husky") == "differential"
+    assert robot_drive("disc") == "holonomic"
+    data = copy.deepcopy(SPEC)
+    data["transfer"].update(agents=[str(trained)], max_episode_steps=6)
+    data["conditions"] = {"robots": [urdf], "modes": ["dynamic"], "levels": ["none", "strong"]}
+    job = Transfer(parse_spec(data, "urdf_transfer.toml"), tmp_path / "transfer")
+    strong = next(c for c in job.cells if c.condition.level == "strong")
+    expected = level_settings("strong", mode="dynamic", drive="differential")
+    env = condition_env(strong.agent, strong.condition, 6)
+    assert {k: env.params[k] for k in expected} == {
+        k: list(v) if isinstance(v, tuple) else v for k, v in expected.items()
+    }
+    assert "torque_scale" in expected  # (a motor perturbation: the drive was not holonomic)
+    job.run()
+    rows = job.report().cells
+    assert {(r.robot, r.level) for r in rows} >= {("husky", "none"), ("husky", "strong")}
+
+
 @pytest.mark.parametrize("tipped", [-1, 3, True, 1.5, "1"])
 def test_a_sidecar_with_an_impossible_fall_count_is_invalid(
     trained: Path, tmp_path: Path, tipped: Any
