@@ -132,7 +132,7 @@ def generate_from_spec(spec: str) -> MazeLayout:
 
 
 def _parse_number(raw: str, key: str, spec: str) -> int | float:
-    if re.fullmatch(r"[+-]?\d{1,19}", raw):
+    if re.fullmatch(r"[+-]?\d{1,1000}", raw):  # (a spec has at most 1,000 characters)
         return int(raw)
     if re.fullmatch(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?", raw):
         value = float(raw)
