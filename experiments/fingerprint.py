@@ -8,7 +8,8 @@ fingerprint here, through one function each:
 - :func:`layout_fingerprint`: the layout's canonical content, loaded with
   ``bullet_maze.load_layout`` (so named, generated and file layouts all work), not the file's
   bytes: a comment edited in the file leaves it unchanged, a moved goal changes it;
-- :func:`robot_fingerprint`: the robot file's validated fields and its URDF's bytes;
+- :func:`robot_fingerprint`: the robot file's validated fields, its URDF's bytes and those of
+  the meshes it loads from outside ``pybullet_data``;
 - :func:`env_fingerprint`: the id's entry point, registered arguments and every constructor
   argument with its default;
 - :func:`resolved_config`: the run's settings with every default filled in, so that a changed
@@ -91,11 +92,32 @@ def robot_content(robot: str) -> dict[str, Any]:
     data = dataclasses.asdict(spec)
     data.pop("source", None)
     data["urdf"] = hashlib.sha256(urdf.read_bytes()).hexdigest()
+    meshes = _own_meshes(urdf)
+    if meshes:  # (absent where there are none, so such robots' fingerprints are as before)
+        data["meshes"] = meshes
     return data
 
 
+def _own_meshes(urdf: Path) -> dict[str, str]:
+    """The SHA-256 of each mesh file the URDF loads (collision shapes change the physics),
+    keyed by its name as written, so that moving the folder changes nothing. Meshes shipped
+    in ``pybullet_data`` are left out: they change only with pybullet itself, and the built-in
+    husky's and racecar's fingerprints stay those of the results already stored."""
+    import pybullet_data
+
+    from bullet_maze.robots.urdf import read_urdf
+
+    shipped = Path(pybullet_data.getDataPath()).resolve()
+    return {
+        name: hashlib.sha256(path.read_bytes()).hexdigest()
+        for name, path in read_urdf(urdf).meshes
+        if not path.resolve().is_relative_to(shipped)
+    }
+
+
 def robot_fingerprint(robot: str) -> str:
-    """Fingerprint of the robot: its file's fields and its URDF's bytes (:func:`robot_content`)."""
+    """Fingerprint of the robot: its file's fields, its URDF's bytes and its own meshes'
+    (:func:`robot_content`)."""
     return digest(robot_content(robot))
 
 

@@ -56,6 +56,9 @@ class UrdfModel:
     round_links: dict[str, float]
     """Radius (metres, the file's scale) of each link whose first collision shape is a cylinder
     or a sphere: a wheel's radius, exactly (pybullet loads cylinders as meshes)."""
+    meshes: tuple[tuple[str, Path], ...] = ()
+    """Each mesh file the URDF names and pybullet will find (:func:`mesh_path`): the name as
+    written, and the file. A mesh found nowhere is left out (pybullet reports it on load)."""
 
     @property
     def has_fixed_joints(self) -> bool:
@@ -123,6 +126,11 @@ def read_urdf(path: Path) -> UrdfModel:
         if shape is not None and shape.tag in ("cylinder", "sphere"):
             with contextlib.suppress(ValueError):
                 round_links[link.get("name", "")] = float(shape.get("radius", "nan"))
+    meshes = tuple(  # (before _rewritten, which makes some of the names absolute)
+        (name, found)
+        for name in dict.fromkeys(m.get("filename", "") for m in root.iter("mesh"))
+        if (found := mesh_path(name, path)) is not None
+    )
     return UrdfModel(
         path=path,
         name=root.get("name", path.stem),
@@ -130,6 +138,7 @@ def read_urdf(path: Path) -> UrdfModel:
         joints=tuple(joints),
         text=_rewritten(root, path),
         round_links={k: v for k, v in round_links.items() if math.isfinite(v) and v > 0},
+        meshes=meshes,
     )
 
 
@@ -225,6 +234,18 @@ def mesh_file(filename: str, urdf: Path) -> str | None:
         if _is_file(place / filename):
             return str(place / filename)
     return None
+
+
+def mesh_path(filename: str, urdf: Path) -> Path | None:
+    """The file pybullet loads for the mesh ``filename`` named in the URDF at ``urdf`` (by the
+    rule of :func:`mesh_file`: as it stands, else beside the URDF or in a folder above), or None
+    when there is none."""
+    found = mesh_file(filename, urdf)
+    if found is not None:
+        return Path(found)
+    for prefix in ("package://", "model://"):
+        filename = filename.removeprefix(prefix)
+    return Path(filename).resolve() if filename and _is_file(Path(filename)) else None
 
 
 def _is_file(path: Path) -> bool:

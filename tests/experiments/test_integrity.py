@@ -187,6 +187,42 @@ def test_an_edited_maze_is_refused_by_name_and_a_comment_is_not(
         write_report(config, out, task=standins.fake_run)
 
 
+def test_an_edited_robot_mesh_is_refused_by_name_and_a_moved_folder_is_not(
+    small_data, standins, tmp_path: Path
+):
+    """A URDF's meshes are its collision shapes: editing one changes the physics, so it is a
+    changed input (the fingerprint once held the URDF's bytes only). Each mesh counts by its
+    name as written, so the same files in another folder are the same robot."""
+    import shutil
+
+    import pybullet_data
+
+    source = Path(pybullet_data.getDataPath()) / "husky"
+    robot = tmp_path / "mine" / "husky.urdf"
+    shutil.copytree(source, robot.parent)
+    moved = tmp_path / "elsewhere" / "husky.urdf"
+    shutil.copytree(source, moved.parent)
+    content = fingerprint.robot_content(str(robot))
+    assert set(content["meshes"]) == {
+        f"meshes/{name}.stl" for name in ("base_link", "bumper", "top_plate", "user_rail", "wheel")
+    }
+    assert fingerprint.robot_fingerprint(str(robot)) == fingerprint.robot_fingerprint(str(moved))
+    assert "meshes" not in fingerprint.robot_content(str(source / "husky.urdf"))  # shipped
+
+    small_data["env"]["robot"] = str(robot)
+    config = parse_config(small_data, source="small.toml")
+    out = tmp_path / "out"
+    runner.run_experiment(config, out, SerialBackend(), standins.fake_run, only=["eps"])
+    runner.run_experiment(config, out, SerialBackend(), standins.fake_run, only=["eps"])
+
+    bumper = robot.parent / "meshes" / "bumper.stl"
+    bumper.write_bytes(bumper.read_bytes() + b"\0")
+    assert fingerprint.robot_fingerprint(str(robot)) != fingerprint.robot_fingerprint(str(moved))
+    with pytest.raises(ConfigError, match=r"eps__\d+: .*robot") as error:
+        runner.run_experiment(config, out, SerialBackend(), standins.fake_run)
+    assert "another --out" in str(error.value)
+
+
 def _resealed(path: Path, edit: Callable[[dict], None]) -> None:
     """Edit a sidecar and record its hash again, as a run computed that way would have it."""
     meta = json.loads(path.read_text())
