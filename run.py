@@ -776,7 +776,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     print(
         f"{playback.path}: {args.episodes} greedy episodes in {where} "
         f"(cap {env.max_episode_steps})"
-        + ("; observation projected to (x, y), heading dropped" if projected else "")
+        + ("; the robot's heading dropped from the observation" if projected else "")
     )
     if env.is_maze:
         print(f"success rate: {result.success_rate:.1%}")

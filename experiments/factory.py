@@ -180,26 +180,50 @@ def optimal_steps(env: gym.Env) -> float:
     return float("nan") if value is None else float(value)
 
 
-class ProjectObservation(gym.ObservationWrapper):
-    """Keep the first ``dims`` observation entries, for an agent trained on fewer inputs.
+HEADING_INDEX = 2
+"""Where a maze observation holds the robot's heading: ``(x, y, heading, lidar ranges...)``
+(``bullet_maze.BulletMazeEnv``; a robot without a heading observes ``(x, y, ranges...)``)."""
 
-    A disc-trained agent sees ``(x, y)``; the husky observes ``(x, y, heading)``. The agent's
-    policy is a function of position only, so the heading is dropped.
-    """
 
-    def __init__(self, env: gym.Env, dims: int) -> None:
+class DropHeading(gym.ObservationWrapper):
+    """The maze's observation without the robot's heading, for an agent trained on a robot that
+    has none: ``(x, y, heading, ranges...)`` becomes ``(x, y, ranges...)``, the inputs in the
+    places the agent learnt them. (Keeping the first values instead would shift every lidar
+    range by one place.)"""
+
+    def __init__(self, env: gym.Env) -> None:
         super().__init__(env)
         space = env.observation_space
-        if not isinstance(space, gym.spaces.Box) or space.shape[0] < dims:
-            raise ValueError(f"cannot project observation space {space} to {dims} dimensions")
-        self.dims = dims
+        if not isinstance(space, gym.spaces.Box) or len(space.shape) != 1:
+            raise ValueError(f"cannot drop the heading of observation space {space}")
+        self.keep = np.delete(np.arange(space.shape[0]), HEADING_INDEX)
         self.observation_space = gym.spaces.Box(
-            space.low[:dims], space.high[:dims], dtype=space.dtype
+            space.low[self.keep], space.high[self.keep], dtype=space.dtype
         )
 
     def observation(self, observation: np.ndarray) -> np.ndarray:
-        """The first ``dims`` entries."""
-        return np.asarray(observation)[: self.dims]
+        """Every entry but the heading."""
+        return np.asarray(observation)[self.keep]
+
+
+def fitted_to(env: gym.Env, dims: int) -> gym.Env:
+    """``env`` as an agent of ``dims`` inputs sees it: itself when it gives ``dims`` values, or
+    :class:`DropHeading` of it when it gives one more because its robot has a heading (a
+    disc-trained agent on the husky). A ValueError saying what differs otherwise: another
+    number of lidar rays, another observation mode or a robot with no heading for an agent
+    that used one cannot be fitted by cutting values."""
+    space = env.observation_space
+    given = int(np.prod(space.shape)) if isinstance(space, gym.spaces.Box) else None
+    if given == dims:
+        return env
+    robot = getattr(env.unwrapped, "robot", None)
+    if given == dims + 1 and getattr(robot, "has_heading", False):
+        return DropHeading(env)
+    raise ValueError(
+        f"the agent observes {dims} values; this environment gives "
+        f"{space if given is None else given}"
+        + (" (its robot's heading is one of them)" if getattr(robot, "has_heading", False) else "")
+    )
 
 
 def load_agent(path: Path) -> Any:

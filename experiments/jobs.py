@@ -19,8 +19,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 from agent.serialization import config_from_data, exploration_from_data
 from experiments import config as config_module
 from experiments import factory, runner
@@ -414,22 +412,21 @@ class Playback:
         return self.config.env
 
     def make_env(self) -> Any:
-        """The environment, projected to the agent's observation dimensions when it has more
-        (the husky's heading is dropped for a disc-trained agent)."""
+        """The environment as the agent sees it (:func:`experiments.factory.fitted_to`: the
+        husky's heading is dropped for a disc-trained agent)."""
         env = factory.check_env(self.config.env, self.origins)
         dims = self.agent.observation_space.shape[0]
-        given = int(np.prod(env.observation_space.shape or ()))
         actions = getattr(env.action_space, "n", None)
-        if given > dims and actions == self.agent.n_actions:
-            return factory.ProjectObservation(env, dims)
-        if given != dims or actions != self.agent.n_actions:
+        try:
+            if actions != self.agent.n_actions:
+                raise ValueError(f"the agent has {self.agent.n_actions} actions; it has {actions}")
+            return factory.fitted_to(env, dims)
+        except ValueError as error:
             env.close()
             raise ConfigError(
-                f"{self.path}: the agent observes {dims} values and has {self.agent.n_actions} "
-                f"actions, but {self.config.env.label!r} (robot {self.config.env.robot!r}) "
-                f"gives {given} values and {actions} actions"
-            )
-        return env
+                f"{self.path}: cannot play {self.config.env.label!r} (robot "
+                f"{self.config.env.robot!r}): {error}"
+            ) from None
 
     def evaluate(self, episodes: int, seed: int = 0) -> EvaluationResult:
         """``episodes`` greedy episodes, the first reset seeded with ``seed``."""
@@ -439,7 +436,7 @@ class Playback:
             optimal = factory.optimal_steps(env)
             start = time.perf_counter()
             result = evaluate(env, self.agent, episodes, seed=seed)
-            projected = isinstance(env, factory.ProjectObservation)
+            projected = isinstance(env, factory.DropHeading)
             return EvaluationResult(result, optimal, time.perf_counter() - start, projected)
         finally:
             env.close()

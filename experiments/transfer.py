@@ -9,7 +9,7 @@ condition (level ``train``: its environment exactly as trained), the reference o
 level's settings are :func:`bullet_maze.perturbations.level_settings` for the cell's robot and
 mode; the training environment's own perturbations are replaced by them, its other arguments
 kept. A position-only policy on a robot that also observes its heading sees ``(x, y)`` only
-(:class:`experiments.factory.ProjectObservation`, as ``run.py evaluate`` does). A condition the
+(:func:`experiments.factory.fitted_to`, as ``run.py evaluate`` does). A condition the
 agent cannot act in (a base of mass 0 in dynamic mode) is listed with the reason, not run.
 
 Each cell (agent x condition) is ``episodes`` greedy episodes, the first reset seeded from the
@@ -496,15 +496,13 @@ def _applies(agent: TransferAgent, spec: EnvSpec) -> str | None:
     except (TypeError, ValueError) as error:
         return str(error)
     try:
-        dims = agent.observation_dims
-        given = int(np.prod(env.observation_space.shape or ()))
         actions = getattr(env.action_space, "n", None)
-        if actions != agent.n_actions or given < dims:
-            return (
-                f"the agent observes {dims} values and has {agent.n_actions} actions; this "
-                f"condition gives {given} values and {actions} actions"
-            )
+        if actions != agent.n_actions:
+            return f"the agent has {agent.n_actions} actions; this condition gives {actions}"
+        factory.fitted_to(env, agent.observation_dims)
         return None
+    except ValueError as error:
+        return str(error)
     finally:
         env.close()
 

@@ -146,10 +146,8 @@ def _evaluate_cell(cell: Cell) -> CellResult:
         used = fingerprint.env_inputs(cell.env, layout=getattr(env.unwrapped, "layout", None))
         inputs = cell_inputs(cell, used)
         inputs["agent"] = hashlib.sha256(raw).hexdigest()
-        dims = agent.observation_space.shape[0]
-        given = int(np.prod(env.observation_space.shape or ()))
-        projected = given > dims
-        played = factory.ProjectObservation(env, dims) if projected else env
+        played = factory.fitted_to(env, agent.observation_space.shape[0])
+        projected = played is not env
         optimal = factory.optimal_steps(env)
         start = time.perf_counter()
         result = evaluate(played, agent, cell.episodes, seed=cell.seed)

@@ -40,12 +40,7 @@ def replay(cell: Cell, episode: int) -> tuple[Trace, Any]:
     """Play the cell's episodes 1..``episode`` again; the trace of the last, and the agent."""
     agent = factory.load_agent(cell.agent.path)
     env = factory.make_env(cell.env)
-    dims = agent.observation_space.shape[0]
-    played = (
-        factory.ProjectObservation(env, dims)
-        if int(np.prod(env.observation_space.shape or ())) > dims
-        else env
-    )
+    played = factory.fitted_to(env, agent.observation_space.shape[0])
     inner: Any = env.unwrapped
     try:
         for number in range(1, episode + 1):

@@ -177,7 +177,7 @@ def test_evaluate_in_dynamic_mode_with_the_husky(trained, capsys):
         == 0
     )
     printed = capsys.readouterr().out
-    assert "heading dropped" in printed
+    assert "the robot's heading dropped from the observation" in printed
     assert "success rate: 0.0%" in printed
     assert "mean 5.0" in printed
 
