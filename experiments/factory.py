@@ -182,21 +182,21 @@ def optimal_steps(env: gym.Env) -> float:
 
 HEADING_INDEX = 2
 """Where a maze observation holds the robot's heading: ``(x, y, heading, lidar ranges...)``
-(``bullet_maze.BulletMazeEnv``; a robot without a heading observes ``(x, y, ranges...)``)."""
+(``bullet_maze.BulletMazeEnv``; a robot without one observes ``(x, y, ranges...)``), in the
+Box itself or in a goal-conditioned ``Dict``'s ``"observation"``."""
 
 
 class DropHeading(gym.ObservationWrapper):
-    """The maze's observation without the robot's heading, for an agent trained on a robot that
-    has none: ``(x, y, heading, ranges...)`` becomes ``(x, y, ranges...)``, the inputs in the
-    places the agent learnt them. (Keeping the first values instead would shift every lidar
-    range by one place.)"""
+    """The observation without the robot's heading at ``index``, for an agent trained on a robot
+    that has none: the other inputs in the places the agent learnt them."""
 
-    def __init__(self, env: gym.Env) -> None:
+    def __init__(self, env: gym.Env, index: int) -> None:
         super().__init__(env)
         space = env.observation_space
         if not isinstance(space, gym.spaces.Box) or len(space.shape) != 1:
             raise ValueError(f"cannot drop the heading of observation space {space}")
-        self.keep = np.delete(np.arange(space.shape[0]), HEADING_INDEX)
+        self.index = index
+        self.keep = np.delete(np.arange(space.shape[0]), index)
         self.observation_space = gym.spaces.Box(
             space.low[self.keep], space.high[self.keep], dtype=space.dtype
         )
@@ -211,19 +211,49 @@ def fitted_to(env: gym.Env, dims: int) -> gym.Env:
     :class:`DropHeading` of it when it gives one more because its robot has a heading (a
     disc-trained agent on the husky). A ValueError saying what differs otherwise: another
     number of lidar rays, another observation mode or a robot with no heading for an agent
-    that used one cannot be fitted by cutting values."""
+    that used one cannot be fitted by leaving values out."""
     space = env.observation_space
     given = int(np.prod(space.shape)) if isinstance(space, gym.spaces.Box) else None
     if given == dims:
         return env
-    robot = getattr(env.unwrapped, "robot", None)
-    if given == dims + 1 and getattr(robot, "has_heading", False):
-        return DropHeading(env)
+    heading = heading_index(env)
+    if given == dims + 1 and heading is not None:
+        return DropHeading(env, heading)
     raise ValueError(
         f"the agent observes {dims} values; this environment gives "
         f"{space if given is None else given}"
-        + (" (its robot's heading is one of them)" if getattr(robot, "has_heading", False) else "")
+        + (" (its robot's heading is one of them)" if heading is not None else "")
     )
+
+
+def heading_index(env: gym.Env) -> int | None:
+    """Where ``env``'s observation, as its wrappers hand it out (a goal-conditioned ``Dict``
+    flattened by ``agent.adapt_env``, say), holds the maze robot's heading; None for a robot
+    without one or an env that is not the maze. Found by passing a raw observation that is 1 at
+    the heading and 0 elsewhere through the wrappers' ``observation`` methods."""
+    inner = env.unwrapped
+    if not getattr(getattr(inner, "robot", None), "has_heading", False):
+        return None
+    raw = inner.observation_space
+    probe: Any
+    if isinstance(raw, gym.spaces.Box) and len(raw.shape) == 1:
+        probe = np.zeros(raw.shape, dtype=np.float64)
+        probe[HEADING_INDEX] = 1.0
+    elif isinstance(raw, gym.spaces.Dict) and "observation" in raw.spaces:
+        probe = {key: np.zeros(part.shape, dtype=np.float64) for key, part in raw.spaces.items()}
+        probe["observation"][HEADING_INDEX] = 1.0
+    else:
+        return None
+    wrappers = []
+    layer: Any = env
+    while isinstance(layer, gym.Wrapper):
+        if isinstance(layer, gym.ObservationWrapper):
+            wrappers.append(layer)
+        layer = layer.env
+    for wrapper in reversed(wrappers):  # innermost first
+        probe = wrapper.observation(probe)
+    marked = np.flatnonzero(np.asarray(probe, dtype=np.float64).reshape(-1) == 1.0)
+    return int(marked[0]) if marked.size == 1 else None
 
 
 def load_agent(path: Path) -> Any:

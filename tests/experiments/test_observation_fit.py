@@ -65,3 +65,23 @@ def test_what_cutting_cannot_fit_is_refused_with_both_sizes(
             fitted_to(env, dims)
     finally:
         env.close()
+
+
+def test_a_goal_conditioned_observation_loses_the_heading_where_the_flattening_put_it() -> None:
+    """``adapt_env`` flattens the goal ``Dict`` as (achieved, desired, observation): the husky's
+    heading is the seventh value, not the third (which is the desired goal's x)."""
+    from agent import adapt_env
+
+    disc = adapt_env(_maze("disc", observation="goal"))
+    husky = adapt_env(_maze("husky", observation="goal"))
+    try:
+        fitted = fitted_to(husky, disc.observation_space.shape[0])
+        assert isinstance(fitted, DropHeading)
+        assert fitted.index == 6
+        raw, _ = husky.reset(seed=2)
+        seen, _ = fitted.reset(seed=2)
+        assert seen.tolist() == raw[:6].tolist()
+        assert seen.tolist() == disc.reset(seed=2)[0].tolist()  # what the disc agent saw
+    finally:
+        disc.close()
+        husky.close()
