@@ -26,6 +26,7 @@ unchanged (scipy needs two observations to resample a sample).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -82,8 +83,8 @@ def stratified_estimate(
     every run of every task, with its 95% stratified bootstrap interval."""
     resampled, fixed = _split(scores)
     value = float(statistic(np.concatenate([*resampled, *fixed])))
-    if not resampled:
-        return Estimate(value, value, value)
+    if not resampled:  # one run per task: nothing to resample, so no interval
+        return Estimate(value, math.nan, math.nan)
 
     low, high = _pooled_interval(resampled, fixed, statistic, seed)
     return Estimate(value, float(low), float(high))

@@ -53,11 +53,14 @@ def bootstrap_mean_band(
 def bootstrap_ci(
     scores: np.ndarray, statistic: str = "mean", confidence: float = 0.95, seed: int = 0
 ) -> tuple[float, float]:
-    """Percentile bootstrap interval of the mean or IQM of per-run scores (scipy.stats)."""
+    """Percentile bootstrap interval of the mean or IQM of per-run scores (scipy.stats); NaN
+    for fewer than two scores (one run says nothing about the spread), and the value itself
+    when every score is equal (every resample is)."""
     data = np.asarray(scores, dtype=float)
-    if data.size < 2 or np.all(data == data[0]):
-        value = float(np.mean(data)) if data.size else float("nan")
-        return value, value
+    if data.size < 2:
+        return float("nan"), float("nan")
+    if np.all(data == data[0]):
+        return float(data[0]), float(data[0])
     function = np.mean if statistic == "mean" else interquartile_mean
     result = scipy_stats.bootstrap(
         (data,),

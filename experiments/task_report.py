@@ -233,6 +233,8 @@ def _return_num(value: float) -> str:
 def _estimate(estimate: aggregate.Estimate | None, digits: int = 2) -> str:
     if estimate is None:
         return "-"
+    if not (math.isfinite(estimate.low) and math.isfinite(estimate.high)):
+        return f"{_num(estimate.value, digits)} [n/a]"  # (one run per task: no interval)
     return (
         f"{_num(estimate.value, digits)} [{_num(estimate.low, digits)}, "
         f"{_num(estimate.high, digits)}]"

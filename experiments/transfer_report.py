@@ -317,15 +317,22 @@ def _ci(values: tuple[float, float, float], percent: bool) -> str:
     if not math.isfinite(mean):
         return "-"
     if percent:
-        return f"{100 * mean:.0f}% [{100 * low:.0f}, {100 * high:.0f}]"
-    return f"{mean:.2f} [{low:.2f}, {high:.2f}]"
+        return f"{100 * mean:.0f}% {_bounds(100 * low, 100 * high, '.0f')}"
+    return f"{mean:.2f} {_bounds(low, high, '.2f')}"
 
 
 def _gap(values: tuple[float, float, float]) -> str:
     mean, low, high = values
     if not math.isfinite(mean):
         return "-"
-    return f"{100 * mean:+.0f} [{100 * low:+.0f}, {100 * high:+.0f}]"
+    return f"{100 * mean:+.0f} {_bounds(100 * low, 100 * high, '+.0f')}"
+
+
+def _bounds(low: float, high: float, form: str) -> str:
+    """``[low, high]``, or ``[n/a]`` where one agent gives no interval."""
+    if not (math.isfinite(low) and math.isfinite(high)):
+        return "[n/a]"
+    return f"[{low:{form}}, {high:{form}}]"
 
 
 def _markdown(

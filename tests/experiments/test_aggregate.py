@@ -31,6 +31,27 @@ def test_the_stratified_bootstrap_of_a_hand_enumerable_case():
     assert (estimate.low, estimate.high) == pytest.approx((5 / 3, 7 / 3))
 
 
+def test_one_run_per_task_gives_no_interval():
+    """With one run in every task nothing is resampled; the interval is NaN, not the value
+    twice (a 95% interval of zero width), and the reports print it as n/a."""
+    from experiments.task_report import _estimate
+
+    estimate = aggregate.iqm([np.array([1.0]), np.array([2.0]), np.array([4.0])], seed=0)
+    assert estimate.value == pytest.approx(7 / 3)  # (the IQM of three values trims nothing)
+    assert np.isnan(estimate.low)
+    assert np.isnan(estimate.high)
+    assert _estimate(estimate) == "2.33 [n/a]"
+    from experiments.report import _bounds
+    from experiments.transfer_report import _ci, _gap
+
+    nan = float("nan")
+    assert _bounds(nan, nan) == "[n/a]"
+    assert _ci((1.0, nan, nan), True) == "100% [n/a]"
+    assert _ci((1.5, nan, nan), False) == "1.50 [n/a]"
+    assert _gap((-0.5, nan, nan)) == "-50 [n/a]"
+    assert _ci((0.5, 0.25, 0.75), True) == "50% [25, 75]"
+
+
 def test_probability_of_improvement_by_hand():
     """Task 1: candidate [1, 2] against baseline [2, 3], lower better: the pairs (1,2), (1,3),
     (2,3) are wins and (2,2) a tie, 3.5 / 4. Task 2: candidate 5 against 4, a loss. Mean over

@@ -63,6 +63,15 @@ def test_bootstrap_ci_agrees_with_the_normal_interval():
     assert high == pytest.approx(scores.mean() + half, abs=0.6)
 
 
+def test_one_run_gives_no_interval_and_equal_runs_a_point():
+    """A 95% interval from one score would claim a spread of zero: it is NaN ("n/a" in the
+    reports). Equal scores resample only to themselves, so their interval is the value."""
+    low, high = st.bootstrap_ci(np.array([42.0]))
+    assert np.isnan(low)
+    assert np.isnan(high)
+    assert st.bootstrap_ci(np.array([3.0, 3.0, 3.0])) == (3.0, 3.0)
+
+
 def test_summarize_rows():
     steps = np.array([[100.0] * 50 + [10.0] * 150, [5000.0] * 200])
     success = (steps < 5000).astype(float)
