@@ -1172,6 +1172,12 @@ class _Reader:
             raise self.fail(
                 where, "solved_return", f"must be above random_return ({low:g}), got {high:g}"
             )
+        if not math.isfinite(high - low):  # (the normalised score divides by it)
+            raise self.fail(
+                where,
+                "solved_return",
+                f"{high:g} is too far from random_return ({low:g}): their difference overflows",
+            )
         return low, high
 
     def distinct(self, tasks: Sequence[TaskSpec]) -> None:

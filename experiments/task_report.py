@@ -315,17 +315,21 @@ def _return_table(summary: TaskSummary, config: ExperimentConfig) -> list[str]:
         if evaluated
         else (f"training return (last {config.final_episodes})")
     )
+    greedy_head = (  # (no column for a greedy evaluation that was not run)
+        f"greedy return ({config.eval_episodes} episodes), mean | " if evaluated else ""
+    )
     lines = [
         f"| strategy | runs | training return (last {config.final_episodes}), mean | "
-        f"greedy return ({config.eval_episodes} episodes), mean | runs solved ({scored_by} >= "
+        f"{greedy_head}runs solved ({scored_by} >= "
         f"{'n/a' if refs is None else f'{refs.solved_return:g}'}) | normalised score, mean | "
         f"P(improvement) over {config.baseline_name} |",
-        "|---|---:|---:|---:|---:|---:|---:|",
+        "|---|---:|---:|" + ("---:|" if evaluated else "") + "---:|---:|---:|",
     ]
     for entry in summary.strategies:
         greedy = (
             "-" if entry.greedy_return is None else _return_num(float(np.mean(entry.greedy_return)))
         )
+        greedy_cell = f"{greedy} | " if evaluated else ""
         solved = (
             "n/a"
             if refs is None
@@ -334,7 +338,7 @@ def _return_table(summary: TaskSummary, config: ExperimentConfig) -> list[str]:
         score = entry.scores.get("normalised_return")
         final = _return_num(float(np.mean(entry.final_return)))
         lines.append(
-            f"| {entry.strategy} | {entry.runs} | {final} | {greedy} | "
+            f"| {entry.strategy} | {entry.runs} | {final} | {greedy_cell}"
             f"{solved} | {'n/a' if score is None else _num(float(np.mean(score)))} | "
             f"{_improvement_on_task(summary, config, entry.strategy)} |"
         )

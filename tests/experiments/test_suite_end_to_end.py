@@ -341,3 +341,22 @@ def test_tasks_without_references_and_runs_shorter_than_the_final_window(
     assert "last 100" not in text
     assert "- reference returns: none" in text
     assert not text.rstrip().endswith("reference returns:")
+
+
+def test_a_report_without_a_greedy_evaluation_has_no_greedy_column(tmp_path: Path):
+    """With ``eval_episodes`` 0 the greedy return was a column of "-" headed "greedy return
+    (0 episodes)"; it is left out, and the runs solved are counted on the training return."""
+    path = tmp_path / "no_eval.toml"
+    path.write_text(
+        UNSCORED.replace("eval_episodes = 1\n", "")
+        + '\n[[task]]\nid = "CartPole-v1"\nname = "cp"\nrandom_return = 20.0\n'
+        "solved_return = 475.0\n"
+    )
+    out = tmp_path / "out"
+    assert _experiment(path, out) == 0
+    text = (out / "report.md").read_text()
+    assert "greedy return" not in text
+    head = next(line for line in text.splitlines() if line.startswith("| strategy | runs"))
+    rule = text.splitlines()[text.splitlines().index(head) + 1]
+    assert head.count("|") == rule.count("|") == 7
+    assert "runs solved (training return (last 3) >= 475)" in text

@@ -235,3 +235,11 @@ def test_random_edits_are_refused_by_name_or_round_trip(tmp_path: Path, base: di
     assert all(message.startswith("fuzz.toml: ") for message in refusals)
     assert len(refusals) > 50
     assert accepted > 5
+
+
+def test_references_whose_difference_overflows_are_refused():
+    """The normalised score divides by solved_return - random_return: references of
+    -1e308 and 1e308, each finite, would make every score 0 (and the profile's axis inf)."""
+    data = copy.deepcopy(TASKS)
+    data["task"][0].update(random_return=-1e308, solved_return=1e308)
+    assert "[task.0] solved_return: 1e+308 is too far from random_return" in _refused(data)
