@@ -175,9 +175,18 @@ def check_agents(
 
 
 def optimal_steps(env: gym.Env) -> float:
-    """``env.unwrapped.optimal_steps`` (NaN when the environment does not say)."""
-    value = getattr(env.unwrapped, "optimal_steps", None)
-    return float("nan") if value is None else float(value)
+    """``env.unwrapped.optimal_steps``, the least number of compass steps to the goal, where it
+    is the env's optimum: NaN when the env does not say, and when its actions are not compass
+    steps (a native or continuous step has another length and may go diagonally, so the count
+    is no bound on its steps; such a run is reported without an optimum)."""
+    from bullet_maze.action_sets import CompassActions
+
+    inner = env.unwrapped
+    value = getattr(inner, "optimal_steps", None)
+    actions = getattr(inner, "actions", None)
+    if value is None or (actions is not None and not isinstance(actions, CompassActions)):
+        return float("nan")
+    return float(value)
 
 
 HEADING_INDEX = 2

@@ -431,7 +431,8 @@ def _definitions(config: ExperimentConfig, summaries: Sequence[TaskSummary]) -> 
         lines += [
             f"- **final steps**: a run's mean steps over its last {final_window} episodes (a "
             "capped episode counts as the cap); **final / optimal** divides it by the layout's "
-            "optimum (`env.unwrapped.optimal_steps`; 1 is optimal).",
+            "optimum (`env.unwrapped.optimal_steps`, in compass steps; 1 is optimal; none for "
+            "native or continuous actions of a wheeled robot, whose steps it does not bound).",
             "- **AUC**: the area under the steps-per-episode curve divided by the number of "
             "episodes, i.e. mean steps per episode over the whole run (rewards learning fast); "
             "**AUC / optimal** divides it by the optimum.",

@@ -86,3 +86,32 @@ def test_a_wheeled_robot_trains_in_physics(tmp_path: Path, capsys):
     files = _run(path, tmp_path / "r", capsys)
     assert len(files) == 4
     assert len(list((tmp_path / "r" / "runs").rglob("*.agent.npz"))) == 4
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "has_optimum"),
+    [
+        ({}, True),
+        ({"actions": "native"}, True),  # (the disc's native actions are the compass ones)
+        ({"robot": "racecar"}, True),  # (compass steps by manoeuvre: still compass steps)
+        ({"robot": "husky", "actions": "native"}, False),
+        ({"actions": "continuous"}, False),
+        ({"robot": "rover", "actions": "continuous"}, False),
+    ],
+)
+def test_the_optimum_is_reported_only_for_compass_steps(kwargs: dict, has_optimum: bool):
+    """``optimal_steps`` counts compass steps of ``step_size``. A native step of a wheeled
+    robot or a continuous step has another length and may go diagonally, so that count is no
+    bound on its steps, and a run with them is reported without an optimum (not as a ratio
+    that could fall below 1)."""
+    import gymnasium as gym
+    import numpy as np
+
+    from experiments.factory import optimal_steps
+
+    env = gym.make("BulletMaze-v0", **kwargs)
+    try:
+        assert (optimal_steps(env) == env.unwrapped.optimal_steps) is has_optimum
+        assert np.isnan(optimal_steps(env)) is not has_optimum
+    finally:
+        env.close()
