@@ -34,6 +34,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from os import PathLike
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -331,6 +333,75 @@ class AdaptiveQAgent:
             "rng": self.uniform.state(),
         }
         return arrays, meta
+
+    def check_state(self, arrays: dict[str, NDArray[Any]]) -> None:
+        """A ValueError unless ``arrays`` is a state this agent can take (an agent file's,
+        :mod:`agent.baseline_files`): for each action at most ``max_boxes`` boxes whose root
+        is this agent's box, each split box's 2^d children a block that halves it (every box
+        but the root the child of one box), depths counted from the root up to ``max_depth``,
+        finite Q values and visit counts >= 0."""
+        from agent.baseline_files import finite
+
+        for a, fresh in enumerate(self.trees):
+            key = f"action{a}."
+            n = arrays[key + "q"].shape[0]
+            dims, fan = fresh.dims, 1 << fresh.dims
+            shapes = {"low": (n, dims), "high": (n, dims)}
+            for name in ("q", "visits", "depth", "first_child", "low", "high"):
+                if arrays[key + name].shape != shapes.get(name, (n,)):
+                    raise ValueError(
+                        f"entry {key + name!r} has shape {arrays[key + name].shape}, expected "
+                        f"{shapes.get(name, (n,))}"
+                    )
+            finite(arrays, (key + "q", key + "low", key + "high"))
+            low, high = arrays[key + "low"], arrays[key + "high"]
+            depth, first = arrays[key + "depth"], arrays[key + "first_child"]
+            if not 1 <= n <= self.max_boxes:
+                raise ValueError(f"action {a} has {n} boxes, not 1 to max_boxes")
+            if low[0].tolist() != fresh.low[0] or high[0].tolist() != fresh.high[0]:
+                raise ValueError(f"action {a}'s root box differs from the agent's")
+            if (arrays[key + "visits"] < 0).any():
+                raise ValueError(f"entry {key + 'visits'!r} holds negative counts")
+            parent = np.full(n, -1)
+            for node in np.flatnonzero(first >= 0).tolist():
+                start = int(first[node])
+                if not node < start <= n - fan:
+                    raise ValueError(f"action {a}: box {node}'s children lie outside the boxes")
+                block = np.arange(start, start + fan)
+                if (parent[block] >= 0).any():
+                    raise ValueError(f"action {a}: a box is the child of two boxes")
+                parent[block] = node
+                middle = 0.5 * (low[node] + high[node])
+                upper = ((np.arange(fan)[:, None] >> np.arange(dims)) & 1).astype(bool)
+                if not (
+                    np.array_equal(low[block], np.where(upper, middle, low[node]))
+                    and np.array_equal(high[block], np.where(upper, high[node], middle))
+                ):
+                    raise ValueError(f"action {a}: box {node}'s children do not halve it")
+            if (parent[1:] < 0).any():
+                raise ValueError(f"action {a}: a box other than the root has no parent")
+            expected = np.zeros(n, dtype=np.int64)
+            for node in range(1, n):  # (a parent's id is below its children's)
+                expected[node] = expected[parent[node]] + 1
+            if not np.array_equal(depth, expected) or (depth > self.max_depth).any():
+                raise ValueError(
+                    f"entry {key + 'depth'!r} is not each box's depth (at most max_depth)"
+                )
+
+    def save(self, path: str | PathLike[str], policy_only: bool = False) -> Path:
+        """Write the agent to ``path`` (``.npz``; :mod:`agent.baseline_files`); returns the
+        path written. ``policy_only`` is the tree agents' argument and changes nothing here."""
+        from agent.baseline_files import save_baseline
+
+        return save_baseline(self, path, policy_only)
+
+    @classmethod
+    def load(cls, path: str | PathLike[str]) -> AdaptiveQAgent:
+        """An agent written by :meth:`save`, acting and learning on exactly as it would have;
+        a ValueError naming the file and the defect for a file that fails a check."""
+        from agent.baseline_files import load_baseline
+
+        return load_baseline(cls, path)
 
     def restore(self, arrays: dict[str, NDArray[Any]], meta: dict[str, Any]) -> None:
         """Inverse of :meth:`state` on an agent built with the same parameters."""

@@ -40,7 +40,7 @@ from dataclasses import dataclass, fields
 from os import PathLike
 from pathlib import Path
 from tokenize import TokenError
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 from gymnasium import spaces
@@ -50,6 +50,8 @@ from agent.exploration import Exploration, Tabu, make_exploration
 from agent.spaces import MAX_OBSERVATION_DIMS, UNBOUNDED_MAGNITUDE
 from agent.uniform_grid import MAX_GRID_CELLS
 from agent.value_checks import check_value, type_hints
+
+_T = TypeVar("_T")
 
 FORMAT = "bullet_maze.agent"
 VERSION = 2
@@ -287,6 +289,16 @@ def read_agent_file(path: str | PathLike[str]) -> SavedAgent:
     there is no file); never executes or unpickles anything, and reads no member before its
     declared size and header are known to be what the metadata implies.
     """
+    return read_archive(path, _read_archive)
+
+
+def read_archive(
+    path: str | PathLike[str],
+    read: Callable[[zipfile.ZipFile, Path, Callable[[str], ValueError]], _T],
+) -> _T:
+    """``read(archive, path, fail)`` on the agent file at ``path`` once it is known to be a
+    ``.npz`` archive of a size an agent file may have; a damaged or unreadable archive is a
+    ``ValueError`` naming the file (``FileNotFoundError`` if there is none)."""
     path = resolve_agent_path(path)
     if not path.is_file():
         raise FileNotFoundError(f"agent file not found: {path}")
@@ -301,19 +313,21 @@ def read_agent_file(path: str | PathLike[str]) -> SavedAgent:
         raise fail("not an agent file (not a .npz archive)")
     try:
         with zipfile.ZipFile(path) as archive:
-            return _read_archive(archive, path, fail)
+            return read(archive, path, fail)
     except (zipfile.BadZipFile, zipfile.LargeZipFile, NotImplementedError, zlib.error) as error:
         raise fail(f"damaged archive ({error})") from None
     except (OSError, EOFError, RuntimeError) as error:
         raise fail(f"cannot be read ({error})") from None
 
 
-def _read_archive(
-    archive: zipfile.ZipFile, path: Path, fail: Callable[[str], ValueError]
-) -> SavedAgent:
+def archive_members(
+    archive: zipfile.ZipFile, fail: Callable[[str], ValueError]
+) -> dict[str, zipfile.ZipInfo]:
+    """The archive's ``.npy`` entries by name, once each, declaring at most an agent file's
+    size, one of them the ``metadata``."""
     members: dict[str, zipfile.ZipInfo] = {}
     for info in archive.infolist():
-        if not info.filename.endswith(".npy") or info.filename in members:
+        if not info.filename.endswith(".npy") or info.filename[: -len(".npy")] in members:
             raise fail(f"unexpected entry {info.filename!r} (not an agent file)")
         members[info.filename[: -len(".npy")]] = info
     declared = sum(info.file_size for info in members.values())
@@ -321,7 +335,14 @@ def _read_archive(
         raise fail(f"entries declare {declared:,} bytes, more than {MAX_FILE_BYTES:,}")
     if "metadata" not in members:
         raise fail("not an agent file (no 'metadata' entry)")
-    meta = _read_metadata(archive, members["metadata"], fail)
+    return members
+
+
+def _read_archive(
+    archive: zipfile.ZipFile, path: Path, fail: Callable[[str], ValueError]
+) -> SavedAgent:
+    members = archive_members(archive, fail)
+    meta = read_metadata(archive, members["metadata"], fail)
 
     kind = meta["kind"]
     dims = len(meta["observation_space"]["low"])
@@ -346,7 +367,7 @@ def _read_archive(
         raise fail(f"missing entries {missing}")
 
     def read(name: str, dtype: str, ndim: int) -> np.ndarray:
-        return _read_array(archive, members[name], name, dtype, ndim, fail)
+        return read_array(archive, members[name], name, dtype, ndim, fail)
 
     if kind == "tree":
         partition_arrays = {
@@ -396,13 +417,7 @@ def _read_archive(
         if ((links < 0) | (links >= n_ids)).any() or (links[:, 0] >= links[:, 1]).any():
             raise fail(f"entry 'links' holds pairs that are not leaf ids a < b below {n_ids}")
 
-    box = meta["observation_space"]
-    dtype = np.dtype(box["dtype"])
-    observation_space = spaces.Box(
-        low=np.asarray(box["low"], dtype=dtype),
-        high=np.asarray(box["high"], dtype=dtype),
-        dtype=dtype,
-    )
+    observation_space = saved_box(meta)
     exploration = meta["exploration"]
     return SavedAgent(
         path=path,
@@ -486,7 +501,7 @@ def _read_header(
     return tuple(shape), dtype, header
 
 
-def _read_array(
+def read_array(
     archive: zipfile.ZipFile,
     info: zipfile.ZipInfo,
     name: str,
@@ -512,9 +527,13 @@ def _read_array(
             raise fail(f"entry {name!r} cannot be read ({error})") from None
 
 
-def _read_metadata(
-    archive: zipfile.ZipFile, info: zipfile.ZipInfo, fail: Callable[[str], ValueError]
+def read_metadata(
+    archive: zipfile.ZipFile,
+    info: zipfile.ZipInfo,
+    fail: Callable[[str], ValueError],
+    check: Callable[[Any, Callable[[str], ValueError]], None] | None = None,
 ) -> dict[str, Any]:
+    """The archive's JSON metadata, checked by ``check`` (default: a tree or grid agent's)."""
     if info.file_size > MAX_METADATA_BYTES:
         raise fail(
             f"entry 'metadata' holds {info.file_size:,} bytes, at most {MAX_METADATA_BYTES:,}"
@@ -538,7 +557,7 @@ def _read_metadata(
         meta = json.loads(text, parse_constant=_json_constant)
     except (ValueError, RecursionError) as error:
         raise fail(f"entry 'metadata' is not valid JSON ({error})") from None
-    _check_metadata(meta, fail)
+    (_check_metadata if check is None else check)(meta, fail)
     return meta
 
 
@@ -546,6 +565,66 @@ def _json_constant(name: str) -> float:
     if name == "NaN":
         raise ValueError("NaN is not allowed")
     return math.inf if name == "Infinity" else -math.inf
+
+
+def check_spaces(
+    meta: dict[str, Any], need: Callable[[bool, str], None]
+) -> tuple[list[float], list[float]]:
+    """The metadata's ``observation_space`` (a Box of 1 to 64 dimensions, a known dtype) and
+    ``n_actions``; returns the box's lows and highs."""
+    box = meta["observation_space"]
+    need(isinstance(box, dict) and set(box) == {"low", "high", "dtype"}, "observation_space: bad")
+    low, high = box["low"], box["high"]
+    need(
+        _numbers(low, allow_infinite=True) and _numbers(high, allow_infinite=True),
+        "observation_space low/high are not lists of numbers",
+    )
+    dims = len(low)
+    need(
+        1 <= dims <= MAX_OBSERVATION_DIMS and len(high) == dims,
+        f"observation_space has {dims} lows and {len(high)} highs "
+        f"(1 to {MAX_OBSERVATION_DIMS} dimensions)",
+    )
+    need(all(a <= b for a, b in zip(low, high, strict=True)), "observation_space has low > high")
+    need(box["dtype"] in OBSERVATION_DTYPES, f"observation_space dtype {box['dtype']!r}")
+    need(
+        box["dtype"] in ("float32", "float64")
+        or all(math.isfinite(v) and float(v).is_integer() for v in (*low, *high)),
+        f"observation_space of dtype {box['dtype']} has bounds that are not integers",
+    )
+    need(
+        _integer(meta["n_actions"]) and 1 <= meta["n_actions"] <= MAX_ACTIONS,
+        f"n_actions must be an integer in [1, {MAX_ACTIONS}], got {meta['n_actions']!r}",
+    )
+    return low, high
+
+
+def saved_box(meta: dict[str, Any]) -> spaces.Box:
+    """The observation space of metadata that :func:`check_spaces` passed."""
+    box = meta["observation_space"]
+    dtype = np.dtype(box["dtype"])
+    return spaces.Box(
+        low=np.asarray(box["low"], dtype=dtype),
+        high=np.asarray(box["high"], dtype=dtype),
+        dtype=dtype,
+    )
+
+
+def check_rng(rng: Any, need: Callable[[bool, str], None]) -> None:
+    """A :class:`agent.random_stream.UniformStream` state's structure (its bit generator's
+    state is checked by NumPy when it is set)."""
+    need(
+        isinstance(rng, dict) and set(rng) == {"bit_generator", "pending", "block"},
+        "rng must hold bit_generator, pending and block",
+    )
+    need(isinstance(rng["bit_generator"], dict), "rng bit_generator is not an object")
+    need(_integer(rng["block"]) and 1 <= rng["block"] <= 1_000_000, "rng block out of range")
+    need(
+        _numbers(rng["pending"])
+        and len(rng["pending"]) <= rng["block"]
+        and all(0.0 <= v < 1.0 for v in rng["pending"]),
+        "rng pending draws are not uniform draws in [0, 1)",
+    )
 
 
 def _check_metadata(meta: Any, fail: Callable[[str], ValueError]) -> None:
@@ -571,30 +650,8 @@ def _check_metadata(meta: Any, fail: Callable[[str], ValueError]) -> None:
 
     need(isinstance(meta["kind"], str), "kind is not a string")
     need(isinstance(meta.get("policy_only", False), bool), "policy_only is not true or false")
-    box = meta["observation_space"]
-    need(isinstance(box, dict) and set(box) == {"low", "high", "dtype"}, "observation_space: bad")
-    low, high = box["low"], box["high"]
-    need(
-        _numbers(low, allow_infinite=True) and _numbers(high, allow_infinite=True),
-        "observation_space low/high are not lists of numbers",
-    )
+    low, high = check_spaces(meta, need)
     dims = len(low)
-    need(
-        1 <= dims <= MAX_OBSERVATION_DIMS and len(high) == dims,
-        f"observation_space has {dims} lows and {len(high)} highs "
-        f"(1 to {MAX_OBSERVATION_DIMS} dimensions)",
-    )
-    need(all(a <= b for a, b in zip(low, high, strict=True)), "observation_space has low > high")
-    need(box["dtype"] in OBSERVATION_DTYPES, f"observation_space dtype {box['dtype']!r}")
-    need(
-        box["dtype"] in ("float32", "float64")
-        or all(math.isfinite(v) and float(v).is_integer() for v in (*low, *high)),
-        f"observation_space of dtype {box['dtype']} has bounds that are not integers",
-    )
-    need(
-        _integer(meta["n_actions"]) and 1 <= meta["n_actions"] <= MAX_ACTIONS,
-        f"n_actions must be an integer in [1, {MAX_ACTIONS}], got {meta['n_actions']!r}",
-    )
     bounds = meta["bounds"]
     need(
         isinstance(bounds, list)
@@ -628,19 +685,7 @@ def _check_metadata(meta: Any, fail: Callable[[str], ValueError]) -> None:
         "exploration must hold name, params and state",
     )
     need(_finite_everywhere(exploration), "exploration holds a value that is not finite")
-    rng = meta["rng"]
-    need(
-        isinstance(rng, dict) and set(rng) == {"bit_generator", "pending", "block"},
-        "rng must hold bit_generator, pending and block",
-    )
-    need(isinstance(rng["bit_generator"], dict), "rng bit_generator is not an object")
-    need(_integer(rng["block"]) and 1 <= rng["block"] <= 1_000_000, "rng block out of range")
-    need(
-        _numbers(rng["pending"])
-        and len(rng["pending"]) <= rng["block"]
-        and all(0.0 <= v < 1.0 for v in rng["pending"]),
-        "rng pending draws are not uniform draws in [0, 1)",
-    )
+    check_rng(meta["rng"], need)
     partition = meta["partition"]
     need(isinstance(partition, dict), "partition is not an object")
     need(

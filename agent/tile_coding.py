@@ -30,6 +30,8 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Sequence
+from os import PathLike
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -301,6 +303,48 @@ class TileCodingAgent:
             "rng": self.uniform.state(),
         }
         return arrays, meta
+
+    def check_state(self, arrays: dict[str, NDArray[Any]]) -> None:
+        """A ValueError unless ``arrays`` is a state this agent can take (an agent file's,
+        :mod:`agent.baseline_files`): a tile table of rows ``(tiling, coordinates..., index)``
+        that numbers each used tile once, ``0 .. used - 1``, with tilings in range and no tile
+        twice, and finite weights of ``(n_actions, used)``."""
+        from agent.baseline_files import finite
+
+        tiles, weights = arrays["tiles"], arrays["weights"]
+        used = tiles.shape[0]
+        if tiles.shape != (used, self.coder.dims + 2):
+            raise ValueError(
+                f"entry 'tiles' has shape {tiles.shape}, expected (tiles, {self.coder.dims + 2})"
+            )
+        if used > self.max_features:
+            raise ValueError(f"entry 'tiles' holds {used} tiles, more than max_features")
+        if weights.shape != (self.n_actions, used):
+            raise ValueError(
+                f"entry 'weights' has shape {weights.shape}, expected {(self.n_actions, used)}"
+            )
+        if sorted(tiles[:, -1].tolist()) != list(range(used)):
+            raise ValueError("entry 'tiles' does not number the used tiles 0 .. n - 1 once each")
+        if ((tiles[:, 0] < 0) | (tiles[:, 0] >= self.tilings)).any():
+            raise ValueError(f"entry 'tiles' names a tiling outside 0 .. {self.tilings - 1}")
+        if len({tuple(row) for row in tiles[:, :-1].tolist()}) != used:
+            raise ValueError("entry 'tiles' lists one tile twice")
+        finite(arrays, ("weights",))
+
+    def save(self, path: str | PathLike[str], policy_only: bool = False) -> Path:
+        """Write the agent to ``path`` (``.npz``; :mod:`agent.baseline_files`); returns the
+        path written. ``policy_only`` is the tree agents' argument and changes nothing here."""
+        from agent.baseline_files import save_baseline
+
+        return save_baseline(self, path, policy_only)
+
+    @classmethod
+    def load(cls, path: str | PathLike[str]) -> TileCodingAgent:
+        """An agent written by :meth:`save`, acting and learning on exactly as it would have;
+        a ValueError naming the file and the defect for a file that fails a check."""
+        from agent.baseline_files import load_baseline
+
+        return load_baseline(cls, path)
 
     def restore(self, arrays: dict[str, NDArray[Any]], meta: dict[str, Any]) -> None:
         """Inverse of :meth:`state` on an agent built with the same parameters."""

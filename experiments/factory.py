@@ -266,10 +266,17 @@ def heading_index(env: gym.Env) -> int | None:
 
 
 def load_agent(path: Path) -> Any:
-    """A saved agent (tree or grid, whichever the file holds)."""
+    """A saved agent: a tree or grid, or a baseline (the tile coder, adaptive Q-learning),
+    whichever the file holds."""
     from agent import SMDPAgent
+    from agent.baseline_files import baseline_kind
 
-    return SMDPAgent.load(path)
+    kind = baseline_kind(path)
+    if kind is None:
+        return SMDPAgent.load(path)
+    if kind not in FIXED_AGENTS:
+        raise ValueError(f"{path}: holds an agent of unknown kind {kind!r}")
+    return FIXED_AGENTS[kind].load(path)  # type: ignore[attr-defined]
 
 
 def maze_geometry(env: gym.Env) -> tuple[Any, np.ndarray]:

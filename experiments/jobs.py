@@ -150,9 +150,10 @@ class TrainJob:
         )
         if is_fixed(spec.agent):
             raise ConfigError(
-                f"{file_config.source}: [strategy {spec.name!r}]: run.py train saves the agent "
-                f'and draws its partition, which agent = "{spec.agent}" cannot; run it with '
-                f"run.py experiment {file_config.source} --only {spec.name}"
+                f"{file_config.source}: [strategy {spec.name!r}]: run.py train draws the "
+                f'agent\'s partition, which agent = "{spec.agent}" has not; run it with '
+                f"run.py experiment {file_config.source} --only {spec.name} (with "
+                "[experiment] save_agents = true to keep its agent file)"
             )
         given = config_module.parse_assignments(params or (), "--param")
         if exploration is not None:

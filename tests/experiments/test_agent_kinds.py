@@ -27,6 +27,7 @@ from experiments.config import (
     same_experiment,
     to_dict,
 )
+from experiments.factory import load_agent
 from experiments.jobs import TrainJob
 
 BASE: dict[str, Any] = {
@@ -217,10 +218,18 @@ def test_train_refuses_a_fixed_agent_and_says_what_to_run(tmp_path: Path):
     assert stop.value.code == 2
 
 
-def test_every_kind_runs_in_an_experiment_and_repeats_bit_for_bit(tmp_path: Path):
-    """One run of each new kind in a maze, twice: the same CSVs to the byte."""
+def test_every_kind_runs_in_an_experiment_and_repeats_bit_for_bit(tmp_path: Path, capsys):
+    """One run of each new kind in a maze, twice: the same CSVs to the byte. Each saves its
+    agent (the baselines too, ``agent.baseline_files``), which the harness loads and
+    ``run.py evaluate`` plays."""
     data = {
-        "experiment": {"name": "kinds", "seed": 11, "runs": 1, "episodes": 2},
+        "experiment": {
+            "name": "kinds",
+            "seed": 11,
+            "runs": 1,
+            "episodes": 2,
+            "save_agents": True,
+        },
         "env": {"maze": "open", "max_episode_steps": 100},
         "strategy": [
             {"name": "general", "preset": "general"},
@@ -240,6 +249,14 @@ def test_every_kind_runs_in_an_experiment_and_repeats_bit_for_bit(tmp_path: Path
         outputs.append({p.name: p.read_bytes() for p in sorted((out / "runs").glob("*.csv"))})
     assert len(outputs[0]) == 3
     assert outputs[0] == outputs[1]
+    files = sorted((tmp_path / "a" / "runs").glob("*.agent.npz"))
+    assert [f.name.split("__")[0] for f in files] == ["aq", "general", "tile"]
+    loaded = [type(load_agent(f)).__name__ for f in files]
+    assert loaded[0] == "AdaptiveQAgent"
+    assert loaded[2] == "TileCodingAgent"
+    capsys.readouterr()
+    assert run.main(["evaluate", str(files[2]), "--config", str(path), "--episodes", "1"]) == 0
+    assert "1 greedy episodes in maze 'open'" in capsys.readouterr().out
 
 
 ISSUE_9_STRATEGIES = {
