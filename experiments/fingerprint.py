@@ -147,12 +147,32 @@ def env_fingerprint(spec: EnvSpec) -> str:
     package = str(module).split(".")[0]
     if package not in OWN_PACKAGES:  # a user's env: its code is an input of the run
         fields["source"] = package_fingerprint(package)
+    engines = {
+        engine: _version(engine)
+        for prefix, engine in ENGINES.items()
+        if str(module).startswith(prefix)
+    }
+    if engines:  # (absent for every other env, whose fingerprint stays as it was)
+        fields["engines"] = engines
     return digest(fields)
 
 
 OWN_PACKAGES = frozenset({"gymnasium", "bullet_maze"})
 """Packages whose envs' code the code fingerprint already covers (``bullet_maze``'s sources,
 Gymnasium's version); any other env's package is fingerprinted with the env."""
+
+ENGINES = {"gymnasium.envs.mujoco": "mujoco", "gymnasium.envs.box2d": "box2d"}
+"""Gymnasium's env modules that step another physics engine, and its package: the engine's
+version is an input of their runs (an upgraded MuJoCo is other physics), while Gymnasium's own
+version is in the code fingerprint."""
+
+
+def _version(package: str) -> str:
+    try:
+        return importlib.metadata.version(package)
+    except importlib.metadata.PackageNotFoundError:
+        return "not installed"
+
 
 MAX_PACKAGE_FILES = 2000
 """The most Python files of a user's env package that are read for its fingerprint."""

@@ -462,3 +462,23 @@ def test_task_report_settings_are_told_apart_from_run_settings():
     assert run_differences(
         same_experiment(config, dataclasses.replace(config, tasks=(capped, *config.tasks[1:])))
     ) == [f"task[{first.name}].max_episode_steps"]
+
+
+def test_a_physics_engine_version_is_an_input_of_its_envs(monkeypatch: pytest.MonkeyPatch):
+    """Gymnasium's MuJoCo and Box2D envs step another engine, whose upgrade is other physics:
+    its version joins their env fingerprint (Gymnasium's own version is in the code's). Shown
+    on CartPole by treating its module as an engine's, since neither engine is installed here;
+    an env outside ``ENGINES`` keeps the fingerprint it had."""
+    from experiments.config import EnvSpec
+
+    spec = EnvSpec(id="CartPole-v1", maze=None, robot=None, mode=None, max_episode_steps=500)
+    plain = fingerprint.env_fingerprint(spec)
+    assert set(fingerprint.ENGINES) == {"gymnasium.envs.mujoco", "gymnasium.envs.box2d"}
+    monkeypatch.setattr(fingerprint, "ENGINES", {"gymnasium.envs.classic_control": "engine"})
+    monkeypatch.setattr(fingerprint, "_version", lambda package: "1.0")
+    first = fingerprint.env_fingerprint(spec)
+    monkeypatch.setattr(fingerprint, "_version", lambda package: "2.0")
+    second = fingerprint.env_fingerprint(spec)
+    assert len({plain, first, second}) == 3
+    monkeypatch.setattr(fingerprint, "ENGINES", {"gymnasium.envs.mujoco": "mujoco"})
+    assert fingerprint.env_fingerprint(spec) == plain
