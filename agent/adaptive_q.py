@@ -34,14 +34,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from os import PathLike
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
+from agent.baseline_files import BaselineFile
 from agent.env_checks import CheckedEnv, deterministic_flag, observation_vector
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
 from agent.exploration.base import greedy_action
@@ -123,7 +122,7 @@ class BoxTree:
         self.n_leaves = sum(1 for c in self.first_child if c < 0)
 
 
-class AdaptiveQAgent:
+class AdaptiveQAgent(BaselineFile):
     """Adaptive Q-learning with UCB bonuses (Sinclair et al. 2019), read as documented above.
 
     Same interface as :class:`agent.SMDPAgent` (``learn``, ``predict``, ``n_leaves``: the boxes
@@ -387,21 +386,6 @@ class AdaptiveQAgent:
                 raise ValueError(
                     f"entry {key + 'depth'!r} is not each box's depth (at most max_depth)"
                 )
-
-    def save(self, path: str | PathLike[str], policy_only: bool = False) -> Path:
-        """Write the agent to ``path`` (``.npz``; :mod:`agent.baseline_files`); returns the
-        path written. ``policy_only`` is the tree agents' argument and changes nothing here."""
-        from agent.baseline_files import save_baseline
-
-        return save_baseline(self, path, policy_only)
-
-    @classmethod
-    def load(cls, path: str | PathLike[str]) -> AdaptiveQAgent:
-        """An agent written by :meth:`save`, acting and learning on exactly as it would have;
-        a ValueError naming the file and the defect for a file that fails a check."""
-        from agent.baseline_files import load_baseline
-
-        return load_baseline(cls, path)
 
     def restore(self, arrays: dict[str, NDArray[Any]], meta: dict[str, Any]) -> None:
         """Inverse of :meth:`state` on an agent built with the same parameters."""

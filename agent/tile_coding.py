@@ -30,14 +30,13 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Sequence
-from os import PathLike
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
+from agent.baseline_files import BaselineFile
 from agent.env_checks import CheckedEnv, deterministic_flag, observation_vector
 from agent.episode_stats import Callback, EpisodeStats, check_learn_arguments, run_episodes
 from agent.exploration.base import greedy_action
@@ -110,7 +109,7 @@ class TileCoder:
         self.table = {tuple(int(v) for v in row[:-1]): int(row[-1]) for row in rows}
 
 
-class TileCodingAgent:
+class TileCodingAgent(BaselineFile):
     """Sarsa(lambda) with replacing traces over tile coding (a baseline; not the paper's).
 
     Same interface as :class:`agent.SMDPAgent`: ``learn``, ``predict``, ``n_leaves`` (here the
@@ -330,21 +329,6 @@ class TileCodingAgent:
         if len({tuple(row) for row in tiles[:, :-1].tolist()}) != used:
             raise ValueError("entry 'tiles' lists one tile twice")
         finite(arrays, ("weights",))
-
-    def save(self, path: str | PathLike[str], policy_only: bool = False) -> Path:
-        """Write the agent to ``path`` (``.npz``; :mod:`agent.baseline_files`); returns the
-        path written. ``policy_only`` is the tree agents' argument and changes nothing here."""
-        from agent.baseline_files import save_baseline
-
-        return save_baseline(self, path, policy_only)
-
-    @classmethod
-    def load(cls, path: str | PathLike[str]) -> TileCodingAgent:
-        """An agent written by :meth:`save`, acting and learning on exactly as it would have;
-        a ValueError naming the file and the defect for a file that fails a check."""
-        from agent.baseline_files import load_baseline
-
-        return load_baseline(cls, path)
 
     def restore(self, arrays: dict[str, NDArray[Any]], meta: dict[str, Any]) -> None:
         """Inverse of :meth:`state` on an agent built with the same parameters."""
