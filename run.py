@@ -407,7 +407,7 @@ def _add_config_source(parser: argparse.ArgumentParser) -> None:
         metavar="CONFIG",
         help="experiment file giving the environment and agent settings "
         f"(default: {DEFAULT_CONFIG}; for a saved agent, the config.toml "
-        "beside it when there is one)",
+        "beside it, or the results folder's for an experiment's saved agent, when there is one)",
     )
 
 

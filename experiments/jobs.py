@@ -370,6 +370,22 @@ class EvaluationResult:
     """Whether the observation was cut to the agent's dimensions (the husky's heading)."""
 
 
+def _own_config(path: Path) -> tuple[Path | None, str | None]:
+    """The experiment file a saved agent was trained with, and its task's name if the file
+    lists tasks: the ``config.toml`` beside it (``run.py train``), or the results folder's for
+    an experiment's saved agents (``runs/<run>.agent.npz``, or ``runs/<task>/<run>.agent.npz``);
+    (None, None) when there is none."""
+    folder = path.parent
+    if (folder / runner.CONFIG_FILE).is_file():
+        return folder / runner.CONFIG_FILE, None
+    if folder.name == runner.RUN_DIR and (folder.parent / runner.CONFIG_FILE).is_file():
+        return folder.parent / runner.CONFIG_FILE, None
+    root = folder.parent.parent / runner.CONFIG_FILE
+    if folder.parent.name == runner.RUN_DIR and root.is_file():
+        return root, folder.name
+    return None, None
+
+
 class Playback:
     """A saved agent and the environment to play it in: its own (the ``config.toml`` beside
     it, checked like any experiment file), changed by options."""
@@ -393,14 +409,13 @@ class Playback:
         else :data:`DEFAULT_CONFIG`)."""
         config_module.check_option_text(str(agent), "AGENT")
         path = _agent_file(Path(agent))
-        beside = path.parent / runner.CONFIG_FILE
+        task = None
         if config is not None:
             loaded = _load(config, "--config", allowed_env_ids)
         else:
-            loaded = config_module.load_config(
-                beside if beside.is_file() else DEFAULT_CONFIG, allowed_env_ids
-            )
-        loaded, origins = (env or EnvOptions()).apply(loaded.single_task())
+            own, task = _own_config(path)
+            loaded = config_module.load_config(own or DEFAULT_CONFIG, allowed_env_ids)
+        loaded, origins = (env or EnvOptions()).apply(loaded.single_task(task, "AGENT"))
         try:
             saved = factory.load_agent(path)
         except (ValueError, OSError) as error:
@@ -420,7 +435,9 @@ class Playback:
         actions = getattr(env.action_space, "n", None)
         try:
             if actions != self.agent.n_actions:
-                raise ValueError(f"the agent has {self.agent.n_actions} actions; it has {actions}")
+                raise ValueError(
+                    f"the agent has {self.agent.n_actions} actions; this environment has {actions}"
+                )
             return factory.fitted_to(env, dims)
         except ValueError as error:
             env.close()

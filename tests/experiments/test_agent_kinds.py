@@ -257,6 +257,37 @@ def test_every_kind_runs_in_an_experiment_and_repeats_bit_for_bit(tmp_path: Path
     capsys.readouterr()
     assert run.main(["evaluate", str(files[2]), "--config", str(path), "--episodes", "1"]) == 0
     assert "1 greedy episodes in maze 'open'" in capsys.readouterr().out
+    # without --config: the results folder's own file, not the default job's 'paper' maze
+    assert run.main(["evaluate", str(files[1]), "--episodes", "1"]) == 0
+    assert "1 greedy episodes in maze 'open'" in capsys.readouterr().out
+
+
+def test_an_experiment_s_saved_agent_is_played_in_its_own_task(tmp_path: Path, capsys):
+    """An agent saved under ``runs/<task>/`` is played in that task of the results folder's
+    experiment when no --config is given (it was played in the default job's maze, or refused
+    there for its action count)."""
+    path = tmp_path / "tasks.toml"
+    path.write_text(
+        '[experiment]\nname = "t"\nruns = 1\nepisodes = 2\nsave_agents = true\n\n'
+        '[[task]]\nid = "CartPole-v1"\n\n[[task]]\nid = "MountainCar-v0"\nname = "mc"\n'
+        "max_episode_steps = 30\n\n"
+        '[[strategy]]\nname = "tile"\nagent = "tile"\n'
+    )
+    out = tmp_path / "out"
+    assert (
+        run.main(
+            ["experiment", str(path), "--backend", "serial", "--no-progress", "--out", str(out)]
+        )
+        == 0
+    )
+    capsys.readouterr()
+    for folder, shown in (
+        ("CartPole-v1", "in CartPole-v1 (cap 500)"),
+        ("mc", "in MountainCar-v0 (cap 30)"),
+    ):
+        (agent,) = (out / "runs" / folder).glob("*.agent.npz")
+        assert run.main(["evaluate", str(agent), "--episodes", "1"]) == 0
+        assert shown in capsys.readouterr().out
 
 
 ISSUE_9_STRATEGIES = {
