@@ -358,7 +358,20 @@ def _read_experiment_agents(
         )
     state = runner.inspect_folder(config, folder, accept_code_change=accept_code_change)
     if not state.finished:
-        raise ConfigError(f"{folder}: no finished run that verifies (nothing to evaluate)")
+        statuses = [check.status for check in state.checks.values()]
+        why = {
+            "code": "computed by another code version (--accept-code-change counts them)",
+            "changed": "computed from other inputs",
+            "invalid": "whose files do not verify",
+            "missing": "not run yet",
+        }
+        counts = ", ".join(
+            f"{statuses.count(status)} {text}" for status, text in why.items() if status in statuses
+        )
+        raise ConfigError(
+            f"{folder}: no finished run that verifies (nothing to evaluate)"
+            + (f"; its runs: {counts}" if counts else "")
+        )
     agents = []
     for spec, check in state.finished:
         assert check.data is not None

@@ -466,3 +466,19 @@ def test_a_sidecar_with_an_impossible_fall_count_is_invalid(
     check = transfer_module.check_cell(out, cell, {})
     assert check.status == "invalid"
     assert f"tipped is {tipped!r} of 2 episodes" in str(check.reason)
+
+
+def test_an_experiment_with_no_verified_run_says_why(trained: Path, tmp_path: Path):
+    """Runs of another code version do not count without --accept-code-change; the refusal
+    says so, with the count, where it said only "no finished run that verifies"."""
+    folder = tmp_path / "copy"
+    shutil.copytree(trained, folder)
+    for sidecar in (folder / "runs").glob("*.json"):
+        meta = json.loads(sidecar.read_text())
+        meta["inputs"]["code"] = {**meta["inputs"]["code"], "sources": "another version"}
+        meta.pop("sidecar_sha256")
+        meta["sidecar_sha256"] = fingerprint.digest(meta)
+        sidecar.write_text(json.dumps(meta))
+    with pytest.raises(ConfigError, match=r"its runs: 2 computed by another code version "):
+        Transfer(_spec([str(folder)]), tmp_path / "out").run()
+    Transfer(_spec([str(folder)]), tmp_path / "out", accept_code_change=True).run()
