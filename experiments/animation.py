@@ -1,4 +1,5 @@
-"""A GIF of one episode seen from above, the learned partition drawn underneath.
+"""A GIF of one episode seen from above, the learned partition (a tree's or a grid's) drawn
+underneath.
 
 The background (partition and maze) is drawn once; each frame only moves the robot and extends
 its track. Long episodes are subsampled to at most ``max_frames`` frames.
@@ -38,7 +39,8 @@ def render_gif(
     figure = Figure(figsize=(5, 5), dpi=80, layout="constrained")
     canvas = FigureCanvasAgg(figure)
     axes = figure.subplots()
-    draw_partition(axes, agent.leaves(), directions, colorbar=False)
+    if hasattr(agent, "leaves"):  # (a fixed baseline has no partition: the maze alone)
+        draw_partition(axes, agent.leaves(), directions, colorbar=False)
     draw_layout(axes, layout)
     radius = getattr(layout, "robot_radius", 5.0)
     (track,) = axes.plot([], [], color="tab:orange", linewidth=1.5, zorder=6)

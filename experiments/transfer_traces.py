@@ -107,7 +107,8 @@ def draw_failures(picks: Sequence[tuple[Cell, int]], path: Path, stored: Transfe
         expected = int(check.columns["steps"][episode - 1])
         replayed = len(trace.positions) - 1
         layout = load_layout(str(cell.env.maze))
-        draw_partition(axes, agent.leaves(), DIRECTIONS)
+        if hasattr(agent, "leaves"):  # (a fixed baseline has no partition: the maze alone)
+            draw_partition(axes, agent.leaves(), DIRECTIONS)
         draw_layout(axes, layout)
         axes.plot(
             trace.positions[:, 0], trace.positions[:, 1], color="tab:orange", lw=1.2, zorder=6

@@ -260,6 +260,10 @@ def test_every_kind_runs_in_an_experiment_and_repeats_bit_for_bit(tmp_path: Path
     # without --config: the results folder's own file, not the default job's 'paper' maze
     assert run.main(["evaluate", str(files[1]), "--episodes", "1"]) == 0
     assert "1 greedy episodes in maze 'open'" in capsys.readouterr().out
+    for baseline in (files[0], files[2]):  # no partition to draw under the track: the maze
+        gif = tmp_path / f"{baseline.stem}.gif"
+        assert run.main(["render", str(baseline), "--out", str(gif), "--max-frames", "3"]) == 0
+        assert gif.stat().st_size > 0
 
 
 def test_an_experiment_s_saved_agent_is_played_in_its_own_task(tmp_path: Path, capsys):

@@ -482,3 +482,18 @@ def test_an_experiment_with_no_verified_run_says_why(trained: Path, tmp_path: Pa
     with pytest.raises(ConfigError, match=r"its runs: 2 computed by another code version "):
         Transfer(_spec([str(folder)]), tmp_path / "out").run()
     Transfer(_spec([str(folder)]), tmp_path / "out", accept_code_change=True).run()
+
+
+def test_a_saved_baseline_is_evaluated_and_its_failures_drawn(tmp_path: Path):
+    """The tile coder saves its agent (``agent.baseline_files``); the transfer plays it in every
+    condition, and its failing episodes are drawn over the maze (it has no partition)."""
+    data = copy.deepcopy(TRAIN)
+    data["strategy"] = [{"name": "tile", "agent": "tile", "agent_params": {"epsilon": 0.1}}]
+    folder = tmp_path / "tile"
+    runner.run_experiment(parse_config(data, "tile.toml"), folder)
+    out = tmp_path / "transfer"
+    job = Transfer(_spec([str(folder)]), out)
+    job.run()
+    assert len(job.status().finished) == len(job.cells) > 0
+    job.report(traces=1)
+    assert (out / "failures.png").is_file()
