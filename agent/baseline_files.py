@@ -119,9 +119,12 @@ def load_baseline(cls: type[_B], path: str | PathLike[str]) -> _B:
         }
         try:
             agent.check_state(arrays)
-            agent.restore(arrays, meta)
         except (TypeError, ValueError, KeyError) as error:
             raise fail(str(error)) from None
+        try:  # (the arrays passed their checks: what fails now is the random stream's state)
+            agent.restore(arrays, meta)
+        except (TypeError, ValueError, KeyError) as error:
+            raise fail(f"metadata rng is not a random generator's state ({error})") from None
         return agent
 
     return serialization.read_archive(path, read)

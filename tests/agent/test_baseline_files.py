@@ -138,7 +138,16 @@ HOSTILE_TILE: list[tuple[str, Callable[[dict, dict], None], str]] = [
     ("param value", _param("alpha", 2.0), "metadata params: TileCodingAgent: alpha"),
     ("param unknown", _param("warp", 1), "metadata params: .*unexpected keyword"),
     ("rng", _meta("rng", {"block": 1}), "rng must hold"),
-    ("rng state", lambda m, a: m["rng"].__setitem__("bit_generator", {"x": 1}), "rng|state"),
+    (
+        "rng state",
+        lambda m, a: m["rng"].__setitem__("bit_generator", {"x": 1}),
+        r"metadata rng is not a random generator's state",
+    ),
+    (
+        "rng inner state",
+        lambda m, a: m["rng"]["bit_generator"].__setitem__("state", 5),
+        r"metadata rng is not a random generator's state",
+    ),
     ("missing array", _drop("weights"), r"entries \['tiles'\] differ"),
     ("extra array", lambda m, a: a.__setitem__("more", np.zeros(1)), r"entries .*more.* differ"),
     ("weights dtype", _array("weights", lambda w: w.astype(np.float32)), "has dtype"),
