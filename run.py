@@ -42,6 +42,7 @@ from experiments import (
     Transfer,
     default_workers,
     import_env_modules,
+    interval_text,
     make_backend,
 )
 
@@ -739,12 +740,7 @@ def _print_task_summary(report: Any) -> None:
                 f"{'IQM [95% CI]':>24} {'P(impr.)':>8}"
             )
         estimate = row.iqm
-        bounds = (
-            f"[{estimate.low:.3f}, {estimate.high:.3f}]"
-            if math.isfinite(estimate.low) and math.isfinite(estimate.high)
-            else "[n/a]"
-        )
-        interval = f"{estimate.value:.3f} {bounds}"
+        interval = f"{estimate.value:.3f} {interval_text(estimate.low, estimate.high, '.3f')}"
         improvement = "-" if row.p_improvement is None else f"{row.p_improvement.value:.2f}"
         print(
             f"{row.strategy:<{width}} {row.score.label:<22} {row.runs:>5} {interval:>24} "

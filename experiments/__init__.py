@@ -60,6 +60,7 @@ if TYPE_CHECKING:
     from experiments.jobs import EnvOptions, Experiment, Playback, TrainJob
     from experiments.layout_sheet import draw_layout_sheet, draw_suite_sheet
     from experiments.runner import FolderState
+    from experiments.statistics import interval_text
     from experiments.transfer import Transfer
 
 _EXPORTS = {
@@ -81,6 +82,7 @@ _EXPORTS = {
     "Transfer": "experiments.transfer",
     "draw_layout_sheet": "experiments.layout_sheet",
     "draw_suite_sheet": "experiments.layout_sheet",
+    "interval_text": "experiments.statistics",
 }
 """The public names and their modules, imported on first use: a worker process that imports
 ``experiments.training`` does not pay for the plotting modules the front door also offers."""
@@ -103,6 +105,7 @@ __all__ = [
     "draw_layout_sheet",
     "draw_suite_sheet",
     "import_env_modules",
+    "interval_text",
     "make_backend",
 ]
 

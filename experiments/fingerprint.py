@@ -300,12 +300,7 @@ def _code_fingerprint(extra: tuple[str, ...]) -> dict[str, str]:
         (str(p.relative_to(ROOT)) if p.is_relative_to(ROOT) else p.name): source_fingerprint(p)
         for p in _source_files(extra)
     }
-    versions = {}
-    for name in LIBRARIES:
-        try:
-            versions[name] = importlib.metadata.version(name)
-        except importlib.metadata.PackageNotFoundError:
-            versions[name] = "not installed"
+    versions = {name: _version(name) for name in LIBRARIES}
     return {
         "sources": digest(sources),
         "python": f"{sys.version_info.major}.{sys.version_info.minor}",

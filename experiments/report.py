@@ -26,6 +26,7 @@ from experiments.statistics import (
     StrategySummary,
     bootstrap_ci,
     interquartile_mean,
+    interval_text,
     summarize,
 )
 from experiments.training import train_run
@@ -286,7 +287,7 @@ def render_markdown(
         lines.append(
             f"| {s.strategy} | {s.runs} | {s.converged_runs} | "
             f"{_maybe(s.median_convergence)} | {_maybe(s.curve_convergence)} | "
-            f"{final:.1f} {_bounds(low, high)} | {interquartile_mean(s.final_steps):.1f} | "
+            f"{final:.1f} {interval_text(low, high)} | {interquartile_mean(s.final_steps):.1f} | "
             f"{_ratio(final, optimal)} | {np.mean(s.auc):.1f} | "
             f"{np.mean(s.success_rate):.3f} | {np.mean(s.final_success_rate):.3f} | "
             f"{np.mean(s.leaves):.0f} | {_num(s.p_improvement, 2)} | "
@@ -333,13 +334,6 @@ def _maybe(value: float | None) -> str:
 
 def _num(value: float, digits: int = 1) -> str:
     return "n/a" if not math.isfinite(value) else f"{value:.{digits}f}"
-
-
-def _bounds(low: float, high: float) -> str:
-    """``[low, high]``, or ``[n/a]`` where one run gives no interval."""
-    if not (math.isfinite(low) and math.isfinite(high)):
-        return "[n/a]"
-    return f"[{low:.1f}, {high:.1f}]"
 
 
 def _ratio(value: float, optimal: float) -> str:

@@ -6,6 +6,7 @@ every resampling draws from a ``numpy.random.Generator`` made from an explicit s
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -72,6 +73,14 @@ def bootstrap_ci(
         vectorized=False,
     )
     return float(result.confidence_interval.low), float(result.confidence_interval.high)
+
+
+def interval_text(low: float, high: float, form: str = ".1f") -> str:
+    """An interval as the reports print it: ``[low, high]`` in the format ``form``, or ``[n/a]``
+    where there is none (one run or one agent: :func:`bootstrap_ci`'s NaN)."""
+    if not (math.isfinite(low) and math.isfinite(high)):
+        return "[n/a]"
+    return f"[{low:{form}}, {high:{form}}]"
 
 
 def interquartile_mean(scores: np.ndarray) -> float:

@@ -22,6 +22,7 @@ from experiments import aggregate, plots, store
 from experiments.config import ExperimentConfig
 from experiments.report import listing, provenance
 from experiments.runner import Task, inspect_folder, results_by_task
+from experiments.statistics import interval_text
 from experiments.task_scores import (
     SCORES,
     Score,
@@ -233,12 +234,8 @@ def _return_num(value: float) -> str:
 def _estimate(estimate: aggregate.Estimate | None, digits: int = 2) -> str:
     if estimate is None:
         return "-"
-    if not (math.isfinite(estimate.low) and math.isfinite(estimate.high)):
-        return f"{_num(estimate.value, digits)} [n/a]"  # (one run per task: no interval)
-    return (
-        f"{_num(estimate.value, digits)} [{_num(estimate.low, digits)}, "
-        f"{_num(estimate.high, digits)}]"
-    )
+    bounds = interval_text(estimate.low, estimate.high, f".{digits}f")
+    return f"{_num(estimate.value, digits)} {bounds}"
 
 
 def _task_heading(summary: TaskSummary, config: ExperimentConfig) -> str:

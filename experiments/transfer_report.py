@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from experiments import store
-from experiments.statistics import bootstrap_ci
+from experiments.statistics import bootstrap_ci, interval_text
 from experiments.transfer_cell import TransferAgent, robot_label
 from experiments.transfer_state import (
     TRAIN_LEVEL,
@@ -317,22 +317,15 @@ def _ci(values: tuple[float, float, float], percent: bool) -> str:
     if not math.isfinite(mean):
         return "-"
     if percent:
-        return f"{100 * mean:.0f}% {_bounds(100 * low, 100 * high, '.0f')}"
-    return f"{mean:.2f} {_bounds(low, high, '.2f')}"
+        return f"{100 * mean:.0f}% {interval_text(100 * low, 100 * high, '.0f')}"
+    return f"{mean:.2f} {interval_text(low, high, '.2f')}"
 
 
 def _gap(values: tuple[float, float, float]) -> str:
     mean, low, high = values
     if not math.isfinite(mean):
         return "-"
-    return f"{100 * mean:+.0f} {_bounds(100 * low, 100 * high, '+.0f')}"
-
-
-def _bounds(low: float, high: float, form: str) -> str:
-    """``[low, high]``, or ``[n/a]`` where one agent gives no interval."""
-    if not (math.isfinite(low) and math.isfinite(high)):
-        return "[n/a]"
-    return f"[{low:{form}}, {high:{form}}]"
+    return f"{100 * mean:+.0f} {interval_text(100 * low, 100 * high, '+.0f')}"
 
 
 def _markdown(

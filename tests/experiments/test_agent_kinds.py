@@ -260,6 +260,12 @@ def test_every_kind_runs_in_an_experiment_and_repeats_bit_for_bit(tmp_path: Path
     # without --config: the results folder's own file, not the default job's 'paper' maze
     assert run.main(["evaluate", str(files[1]), "--episodes", "1"]) == 0
     assert "1 greedy episodes in maze 'open'" in capsys.readouterr().out
+    damaged = tmp_path / "damaged.agent.npz"
+    damaged.write_bytes(files[2].read_bytes()[:-40])
+    with pytest.raises(SystemExit) as stop:  # the CLI: a message naming the file, no traceback
+        run.main(["evaluate", str(damaged), "--config", str(path)])
+    assert stop.value.code == 2
+    assert "cannot load the agent: " in capsys.readouterr().err
     for baseline in (files[0], files[2]):  # no partition to draw under the track: the maze
         gif = tmp_path / f"{baseline.stem}.gif"
         assert run.main(["render", str(baseline), "--out", str(gif), "--max-frames", "3"]) == 0

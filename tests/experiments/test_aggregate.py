@@ -41,11 +41,11 @@ def test_one_run_per_task_gives_no_interval():
     assert np.isnan(estimate.low)
     assert np.isnan(estimate.high)
     assert _estimate(estimate) == "2.33 [n/a]"
-    from experiments.report import _bounds
+    from experiments.statistics import interval_text
     from experiments.transfer_report import _ci, _gap
 
     nan = float("nan")
-    assert _bounds(nan, nan) == "[n/a]"
+    assert interval_text(nan, nan) == "[n/a]"
     assert _ci((1.0, nan, nan), True) == "100% [n/a]"
     assert _ci((1.5, nan, nan), False) == "1.50 [n/a]"
     assert _gap((-0.5, nan, nan)) == "-50 [n/a]"
